@@ -1,0 +1,106 @@
+// ode_bpp/io.h: MLCP problem files (format version 1, specified byte by byte in
+// docs/mlcp-format.md).
+//
+// A file holds one MLCP as ODE builds it (see solver.h): A's lower triangle, b, lo, hi,
+// optional findex, optional joint blocks, an optional reference solution x, optional
+// key=value metadata, and a CRC-32 of everything before it. Every index space here is the
+// original row order of the problem; nothing is permuted.
+//
+// Readers never throw and never trust sizes: every count in the header is checked against
+// the number of bytes actually present before anything is allocated.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <ode/mlcp.h>
+
+#include "ode_bpp/solver.h"
+
+namespace ode_bpp {
+
+/// The format version this library reads and writes.
+inline constexpr std::uint32_t kMlcpFormatVersion = 1;
+
+/// Ordered key=value text attached to a problem. Keys are non-empty and use only
+/// [A-Za-z0-9_.-]; values contain neither '\n' nor '\0'; keys are unique.
+/// Conventional keys: scene, frame, island, cfm, erp, step_size, solver.
+struct Metadata {
+    std::vector<std::pair<std::string, std::string>> entries;
+
+    /// Sets key to value, replacing an existing entry in place or appending a new one.
+    void set(const std::string& key, const std::string& value);
+    /// The value of key, or null if absent.
+    const std::string* find(std::string_view key) const;
+
+    static bool valid_key(std::string_view key);
+    static bool valid_value(std::string_view value);
+};
+
+/// One MLCP that owns its data.
+struct MlcpFile {
+    int n = 0;
+    int nub = 0;
+    /// n x n row-major with lda = n, symmetric: the file's lower triangle mirrored.
+    std::vector<double> A;
+    std::vector<double> b, lo, hi;   ///< n each; lo/hi may be -inf/+inf
+    std::vector<int> findex;         ///< n entries, or empty when the problem has no friction rows
+    std::vector<int> block_row;      ///< num_blocks + 1 entries, or empty (no block structure)
+    std::vector<int> block_body;     ///< 2 * num_blocks entries, -1 for the static environment
+    int num_bodies = 0;              ///< block_body entries lie in [-1, num_bodies)
+    std::vector<double> x_ref;       ///< n entries of a reference solution, or empty
+    Metadata meta;
+
+    int num_blocks() const { return block_row.empty() ? 0 : static_cast<int>(block_row.size()) - 1; }
+    /// A view for solve(); valid while this object is alive and unchanged.
+    Problem view() const;
+};
+
+/// Outcome of reading: on failure error is "<name>: offset <k>: <reason>", where k is the
+/// byte offset of the first offending field, and file is empty.
+struct ReadResult {
+    bool ok = false;
+    MlcpFile file;
+    std::string error;
+};
+
+/// Reads and validates a whole file (structure only: NaN or lo > hi are left to solve()).
+ReadResult read_mlcp(const std::string& path);
+/// Same on an in-memory image of size bytes; name is used in error messages only.
+ReadResult read_mlcp_bytes(const std::uint8_t* data, std::size_t size, const std::string& name);
+
+/// Copies a Problem (strided vectors, any lda) into an owning MlcpFile; x_ref is n contiguous
+/// doubles or null. num_bodies becomes 1 + the largest body index. Fails, with a message
+/// naming the field, when the structure is invalid (same checks as the reader).
+std::optional<MlcpFile> copy_problem(const Problem& problem, const Metadata& meta,
+                                     const double* x_ref, std::string* error);
+
+/// Copies the island ODE handed to the MLCP observer or solver: A (m x skip, lower block
+/// triangle) is read below and on the diagonal only, pairsbx/pairslh are de-interleaved, and
+/// joint k becomes block k (rows joints[k].row .. +m, bodies joints[k].body[0..1]) over nb
+/// bodies. Must be called before the solve (Dantzig destroys A). Sets metadata step_size and,
+/// if the world is known, cfm and erp, unless meta already has them. Fails, with a message,
+/// when the joints do not tile the rows or the structure is otherwise invalid.
+std::optional<MlcpFile> capture_from_ode(const dMLCP& problem, const Metadata& meta, std::string* error);
+
+/// Serializes a file image (version kMlcpFormatVersion). Fails on an invalid structure.
+bool encode_mlcp(const MlcpFile& file, std::vector<std::uint8_t>* bytes, std::string* error);
+
+/// Writes the file through a temporary and a rename, so readers never see half a file.
+bool write_mlcp(const std::string& path, const MlcpFile& file, std::string* error);
+/// copy_problem followed by write_mlcp.
+bool write_mlcp(const std::string& path, const Problem& problem, const Metadata& meta,
+                const double* x_ref, std::string* error);
+/// capture_from_ode followed by write_mlcp.
+bool write_mlcp_from_ode(const std::string& path, const dMLCP& problem, const Metadata& meta,
+                         std::string* error);
+
+/// CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of size bytes: the file's checksum.
+std::uint32_t crc32(const std::uint8_t* data, std::size_t size);
+
+}  // namespace ode_bpp

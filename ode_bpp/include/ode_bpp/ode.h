@@ -1,0 +1,66 @@
+// ode_bpp/ode.h: ode-bpp inside ODE's world step.
+//
+// Linking libode_bpp registers its solvers with the patched ODE's MLCP registry
+// (<ode/mlcp.h>) when the library loads: "bpp", "bpp-sky", "bpp-down", "bpp-chol" and "pgs"
+// join ODE's built-in "dantzig". A world then switches with one call:
+//
+//     ode_bpp_use(world, "bpp");            // or dWorldSetMLCPSolver(world, "bpp")
+//
+// and an unchanged program switches with the environment: ODE_LCP_SOLVER=bpp.
+#pragma once
+
+#include <ode/ode.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Registers ode-bpp's solvers with ODE (idempotent; already done when the library loads).
+/// Returns the number of solvers registered.
+int ode_bpp_register_solvers(void);
+
+/// Selects the named solver for this world (registering first). Returns 1 on success, 0 for an
+/// unknown name (the world's choice is then unchanged).
+int ode_bpp_use(dWorldID world, const char* solver_name);
+
+#ifdef __cplusplus
+}
+
+#include <string>
+
+#include "ode_bpp/solver.h"
+
+namespace ode_bpp {
+
+/// Per-world settings of the hooked solver. The method is the one named in dWorldSetMLCPSolver;
+/// the rest is taken from here.
+struct WorldSettings {
+    Options options;                ///< friction mode, budgets, tolerances (method is ignored)
+    bool warm_start = true;         ///< start each island from the previous step's index sets
+    bool order_likely_tight_last = true;  ///< Bpp only: previous step's tight rows go last
+};
+
+/// Replaces the settings of a world (thread-safe). Worlds without settings use the defaults.
+void set_world_settings(dWorldID world, const WorldSettings& settings);
+WorldSettings world_settings(dWorldID world);
+
+/// The full Result of the last island that the hook solved in this world (for demos and tests:
+/// residuals, pivots, tight count, fallback). Empty Result if none.
+Result last_island_result(dWorldID world);
+
+/// Forgets the warm-start state and settings of a world (call before dWorldDestroy if the
+/// process creates many worlds; stale state is harmless otherwise).
+void forget_world(dWorldID world);
+
+/// Counts of the hook since the process started, over all worlds.
+struct HookCounters {
+    long islands = 0;               ///< islands solved by an ode-bpp solver
+    long warm_started = 0;          ///< of which started from a previous index set
+    long converged = 0;             ///< Status::Converged
+    long fallbacks = 0;             ///< answered by a fallback (Status::FallbackUsed)
+    long failures = 0;              ///< returned dMLCPFailed: ODE's Dantzig answered
+};
+HookCounters hook_counters();
+
+}  // namespace ode_bpp
+#endif

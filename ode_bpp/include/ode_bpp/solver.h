@@ -1,0 +1,153 @@
+// ode_bpp/solver.h: the public face of the solver.
+//
+// A Problem (a view, owning nothing) and Options go in; a Result comes out.
+// The MLCP is ODE's (ode/src/lcp.h):
+//     A x = b + w,   and for each row i one of
+//         x_i = lo_i and w_i >= 0,   x_i = hi_i and w_i <= 0,   lo_i < x_i < hi_i and w_i = 0.
+// A friction row i (findex[i] >= 0) has the bounds hi_i <- |hi_i * x[findex[i]]|, lo_i <- -hi_i,
+// i.e. its input hi_i is the friction coefficient mu_i.
+// All index spaces in this header are the caller's original row order.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ode_bpp {
+
+/// A read-only strided vector, so that ODE's interleaved pairs (b at [2i], x at [2i+1])
+/// are used in place without copies.
+struct ConstStrided {
+    const double* data = nullptr;
+    int stride = 1;
+    double operator[](int i) const { return data[static_cast<std::ptrdiff_t>(i) * stride]; }
+};
+
+/// A writable strided vector (the solution x).
+struct Strided {
+    double* data = nullptr;
+    int stride = 1;
+    double& operator[](int i) const { return data[static_cast<std::ptrdiff_t>(i) * stride]; }
+};
+
+/// One MLCP, as a view. A is n x n, row-major with row stride lda >= n; only the lower
+/// triangle (diagonal included) is read, as ODE fills only the lower block triangle.
+struct Problem {
+    int n = 0;
+    const double* A = nullptr;
+    int lda = 0;
+    ConstStrided b, lo, hi;
+    const int* findex = nullptr;   ///< n entries, -1 for none; may be null
+    /// Leading rows that are unbounded whatever lo/hi say. A lower bound only: every row with
+    /// lo = -inf and hi = +inf is unbounded too (ODE 0.16.2 passes the count of joints, not rows).
+    int nub = 0;
+    /// Optional constraint-graph structure for the ordering: row blocks (one per joint),
+    /// block k owning rows block_row[k] .. block_row[k+1]-1, and coupling bodies
+    /// block_body[2k], block_body[2k+1] (-1 for the static environment). Null: the
+    /// graph is read off A's non-zeros instead.
+    int num_blocks = 0;
+    const int* block_row = nullptr;   ///< num_blocks + 1 entries
+    const int* block_body = nullptr;  ///< 2 * num_blocks entries
+};
+
+/// The solvers, selectable at run time by name (see method_from_string).
+enum class Method {
+    BppChol,   ///< "bpp-chol": Alg. 1, a fresh dense Cholesky of A_FF at every pivot step
+    BppDown,   ///< "bpp-down": Alg. 2, factor once, copy L and delete tight rows, dense storage
+    BppSky,    ///< "bpp-sky":  Alg. 2 + 3, Cuthill-McKee ordering, deletion and solve inside the skyline
+    Bpp,       ///< "bpp": envelope storage, cost model choosing deletion or partial refactoring per step
+    Dantzig,   ///< "dantzig": ODE's stock Dantzig through dSolveMLCPDantzig (needs the ODE library)
+    Pgs,       ///< "pgs": projected Gauss-Seidel, Options::pgs_iterations sweeps
+};
+const char* to_string(Method m);
+std::optional<Method> method_from_string(std::string_view name);
+/// All method names, in the order of the enum.
+std::vector<std::string> method_names();
+
+/// How friction bounds follow the normal impulses.
+enum class FrictionMode {
+    Frozen,      ///< Dantzig's semantics: bounds fixed from the normals of a first solve
+    Consistent,  ///< at convergence |x_i| <= mu_i * x_findex[i] for every friction row
+};
+const char* to_string(FrictionMode f);
+std::optional<FrictionMode> friction_from_string(std::string_view name);
+
+enum class Status {
+    Converged,       ///< the method's own iteration reached a certified answer
+    MaxIterations,   ///< the pivot budget ran out; x is the best iterate (or PGS's last sweep)
+    FallbackUsed,    ///< the answer came through a documented fallback (see Result::fallback)
+    NotSpd,          ///< A is not positive definite, and regularization did not rescue it
+    InvalidInput,    ///< validation failed (NaN/Inf, lo > hi, bad findex, bad sizes); x is zero
+    FrictionNotConsistent,  ///< consistent mode: the outer bound loop ran out of iterations
+};
+const char* to_string(Status s);
+/// True when x is a usable answer (Converged, FallbackUsed, or an inexact but finite iterate).
+bool is_usable(Status s);
+
+/// Per-row state of an index set: the paper's F, T_lo and T_hi.
+enum class RowState : std::int8_t { Free = 0, AtLo = 1, AtHi = 2 };
+
+struct Options {
+    Method method = Method::Bpp;
+    FrictionMode friction = FrictionMode::Frozen;
+    /// Pivot-step budget per fixed-bound solve (the paper used 35).
+    int max_pivots = 60;
+    /// Block steps without a fall in the number of infeasible rows before Murty's single pivot.
+    int murty_after = 10;
+    /// Relative tolerance: a row is infeasible when it breaks its bound by more than
+    /// tol * (|A||x| + |b|)_i (scaled per row, never an absolute constant).
+    double tolerance = 1e-9;
+    /// Consistent friction: outer bound updates, damped (new = (1-d)*old + d*target).
+    int max_friction_rounds = 30;
+    double friction_damping = 0.6;
+    /// Regularization continuation for nearly singular A: solve with A + delta*I, delta falling
+    /// geometrically to 0, each stage warm-started from the last. 0 disables it.
+    int continuation_stages = 0;
+    /// Projected Gauss-Seidel sweeps (Method::Pgs only).
+    int pgs_iterations = 35;
+    /// Warm start: initial index set in original row order (n entries), or empty for all free.
+    std::vector<RowState> warm_start;
+    /// Compute Table 4's ||L_deleted - chol(A_FF)||_F at the final index set (costly).
+    bool compute_factor_error = false;
+    /// Record |T| at every pivot step in Result::tight_per_step.
+    bool record_steps = true;
+    /// On failure of the method, finish with ODE's Dantzig if it is available.
+    bool dantzig_fallback = true;
+};
+
+struct Result {
+    Status status = Status::InvalidInput;
+    std::string message;          ///< human-readable reason, always set when not Converged
+    Method method = Method::Bpp;
+    FrictionMode friction = FrictionMode::Frozen;
+    int pivots = 0;               ///< pivot steps (solves of A_FF x_F = rhs), all rounds together
+    int murty_pivots = 0;         ///< of which single (Murty) pivots
+    int downdate_steps = 0;       ///< steps whose L_FF came from copying L and deleting rows
+    int refactor_steps = 0;       ///< steps whose L_FF came from a (partial) refactorization
+    int friction_rounds = 0;      ///< outer bound updates (consistent mode)
+    std::vector<int> tight_per_step;  ///< |T| at each pivot step
+    int tight = 0;                ///< |T| at the answer
+    std::string fallback;         ///< fallback taken, empty if none ("regularized", "dantzig", ...)
+    /// Natural residual ||x - clamp(x - w, lo(x), hi(x))||_inf with friction bounds taken from
+    /// the returned normal impulses, and the same divided by max(1, ||b||_inf).
+    double natural_residual = 0;
+    double relative_natural_residual = 0;
+    /// ||A_FF x_F - (b_F - A_FT x_T)||_inf at the answer's index set.
+    double free_residual = 0;
+    /// max over friction rows of max(0, |x_i| - mu_i |x_findex[i]|).
+    double friction_error = 0;
+    /// Table 4's factor error (NaN unless requested and meaningful for the method).
+    double factor_error = -1;
+    std::vector<RowState> states; ///< final index set, original row order (for warm starts)
+};
+
+/// Solves the problem with the chosen method and writes x (n entries).
+/// Never throws on bad input and never writes non-finite values into x.
+Result solve(const Problem& problem, const Options& options, Strided x);
+
+/// Convenience overload for contiguous x.
+Result solve(const Problem& problem, const Options& options, double* x);
+
+}  // namespace ode_bpp

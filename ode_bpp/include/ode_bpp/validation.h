@@ -1,0 +1,34 @@
+// ode_bpp/validation.h: checking an MLCP before any solver touches it.
+//
+// Index space: the caller's original row order (messages name original rows).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ode_bpp/solver.h"
+
+namespace ode_bpp {
+
+/// The verdict of validate(): valid, or the first defect found, naming the row and the reason.
+struct ValidationResult {
+    bool valid = true;
+    std::string message;  ///< empty when valid, e.g. "row 7: lo (1.5) > hi (0.3)"
+};
+
+/// Checks a problem against the contract of ODE's MLCP (ode/src/lcp.h) that every method relies on:
+///  - n >= 1, A/b/lo/hi non-null, lda >= n, strides >= 1, 0 <= nub <= n;
+///  - A's lower triangle (diagonal included) finite, diagonal > 0;
+///  - b finite; lo, hi not NaN (+-inf allowed), lo <= hi, and lo <= 0 <= hi as ODE requires
+///    (its Dantzig starts from x = 0, which must be feasible); a friction row's lo is ignored;
+///  - findex (if given): -1 or in [0, n), never the row itself, never a friction row (a normal
+///    cannot itself be a friction row), never a friction row inside the first nub rows, and the
+///    friction coefficient hi_i = mu_i >= 0;
+///  - block structure (if num_blocks > 0): block_row non-decreasing from 0 to n, bodies >= -1.
+/// Reads only; O(n^2) for A's lower triangle.
+ValidationResult validate(const Problem& problem);
+
+/// Checks that a warm start fits the problem: empty (no warm start) or exactly n entries.
+ValidationResult validate_warm_start(const Problem& problem, const std::vector<RowState>& warm_start);
+
+}  // namespace ode_bpp

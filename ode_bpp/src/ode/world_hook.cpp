@@ -1,0 +1,194 @@
+// The ODE glue: ode-bpp's solvers registered with the patched world step (<ode/mlcp.h>).
+//
+// Index space: ODE's island row order (original) throughout; the solver permutes inside.
+// ODE's interleaved arrays are used in place: b = pairsbx[2i], x = pairsbx[2i+1],
+// lo = pairslh[2i], hi = pairslh[2i+1]; A is read in place (lower triangle, stride skip).
+//
+// Fallback chain of one island (reported in dMLCPIslandStats::fallback):
+//   1. the solver's own chain (regularize and retry, then ODE's Dantzig: Status::FallbackUsed);
+//   2. a result that is not usable (max iterations, not SPD, invalid input): we return
+//      dMLCPFailed without touching A, b, lo, hi, and the world step answers with ODE's Dantzig.
+#include "ode_bpp/ode.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <unordered_map>
+
+#include "ode/row_identity.h"
+
+namespace ode_bpp {
+namespace {
+
+struct WorldState {
+    WorldSettings settings;
+    RowStateMemory memory;       // index sets of the previous step, by row identity
+    Result last;
+};
+
+struct HookState {
+    std::mutex lock;
+    std::unordered_map<dWorldID, WorldState> worlds;
+    HookCounters counters;
+};
+
+HookState& hook() {
+    static HookState* state = new HookState();  // never destroyed: ODE may step during exit
+    return *state;
+}
+
+struct SolverEntry {
+    const char* name;
+    Method method;
+};
+constexpr SolverEntry kSolvers[] = {
+    {"bpp", Method::Bpp},           {"bpp-sky", Method::BppSky}, {"bpp-down", Method::BppDown},
+    {"bpp-chol", Method::BppChol},  {"pgs", Method::Pgs},
+};
+
+/// Joint structure -> Problem blocks (one block per joint, bodies as ODE's island indices).
+void fill_blocks(const dMLCP& p, std::vector<int>& block_row, std::vector<int>& block_body) {
+    block_row.assign(static_cast<size_t>(p.nj) + 1, p.m);
+    block_body.assign(2 * static_cast<size_t>(p.nj), -1);
+    for (int k = 0; k < p.nj; ++k) {
+        block_row[k] = p.joints[k].row;
+        block_body[2 * k] = p.joints[k].body[0];
+        block_body[2 * k + 1] = p.joints[k].body[1];
+    }
+}
+
+Problem view_of(const dMLCP& p, const std::vector<int>& block_row, const std::vector<int>& block_body) {
+    Problem q;
+    q.n = p.m;
+    q.A = p.A;
+    q.lda = p.skip;
+    q.b = ConstStrided{p.pairsbx, 2};
+    q.lo = ConstStrided{p.pairslh, 2};
+    q.hi = ConstStrided{p.pairslh + 1, 2};
+    q.findex = p.findex;
+    q.nub = p.nub;
+    if (p.joints != nullptr && p.nj > 0) {
+        q.num_blocks = p.nj;
+        q.block_row = block_row.data();
+        q.block_body = block_body.data();
+    }
+    return q;
+}
+
+int count_tight(const std::vector<RowState>& states) {
+    int tight = 0;
+    for (RowState s : states) tight += s != RowState::Free ? 1 : 0;
+    return tight;
+}
+
+dMLCPStatus to_ode_status(const Result& r) {
+    switch (r.status) {
+        case Status::Converged: return dMLCPSolved;
+        case Status::FallbackUsed:
+        case Status::FrictionNotConsistent: return dMLCPSolvedByFallback;
+        default: return dMLCPFailed;
+    }
+}
+
+const char* fallback_name(const Result& r) {
+    if (r.status == Status::FrictionNotConsistent) return "friction-not-consistent";
+    if (r.fallback == "dantzig") return "dantzig";
+    if (r.fallback == "regularized") return "regularized";
+    return r.fallback.empty() ? nullptr : "other";
+}
+
+dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
+    const Method method = *static_cast<const Method*>(userdata);
+    thread_local std::vector<int> block_row, block_body;
+    thread_local std::vector<RowKey> keys;
+    if (problem->joints != nullptr) fill_blocks(*problem, block_row, block_body);
+    const Problem q = view_of(*problem, block_row, block_body);
+
+    Options options;
+    bool warm = false;
+    {
+        std::lock_guard<std::mutex> g(hook().lock);
+        WorldState& ws = hook().worlds[problem->world];
+        options = ws.settings.options;
+        if (ws.settings.warm_start && problem->joints != nullptr) {
+            row_keys(*problem, keys);
+            warm = ws.memory.recall(keys, options.warm_start);
+        }
+    }
+    options.method = method;
+    if (!warm) options.warm_start.clear();
+
+    // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
+    const Result r = solve(q, options, Strided{problem->pairsbx + 1, 2});
+
+    const dMLCPStatus status = to_ode_status(r);
+    stats->pivots = r.pivots;
+    stats->tight = count_tight(r.states);
+    stats->fallbacks = r.fallback.empty() ? 0 : 1;
+    stats->fallback = fallback_name(r);
+
+    std::lock_guard<std::mutex> g(hook().lock);
+    HookState& h = hook();
+    WorldState& ws = h.worlds[problem->world];
+    if (problem->joints != nullptr && status != dMLCPFailed) ws.memory.remember(keys, r.states);
+    ws.last = r;
+    h.counters.islands += 1;
+    h.counters.warm_started += warm ? 1 : 0;
+    h.counters.converged += r.status == Status::Converged ? 1 : 0;
+    h.counters.fallbacks += r.status == Status::FallbackUsed ? 1 : 0;
+    h.counters.failures += status == dMLCPFailed ? 1 : 0;
+    return status;
+}
+
+Method g_methods[std::size(kSolvers)];
+
+int register_all() {
+    int registered = 0;
+    for (size_t i = 0; i < std::size(kSolvers); ++i) {
+        g_methods[i] = kSolvers[i].method;
+        registered += dRegisterMLCPSolver(kSolvers[i].name, &solve_island, &g_methods[i], dMLCP_API_VERSION);
+    }
+    return registered;
+}
+
+// Registration when the library loads, so that linking (or preloading) is enough.
+[[maybe_unused]] const int g_registered_at_load = register_all();
+
+}  // namespace
+
+void set_world_settings(dWorldID world, const WorldSettings& settings) {
+    std::lock_guard<std::mutex> g(hook().lock);
+    hook().worlds[world].settings = settings;
+}
+
+WorldSettings world_settings(dWorldID world) {
+    std::lock_guard<std::mutex> g(hook().lock);
+    auto it = hook().worlds.find(world);
+    return it != hook().worlds.end() ? it->second.settings : WorldSettings{};
+}
+
+Result last_island_result(dWorldID world) {
+    std::lock_guard<std::mutex> g(hook().lock);
+    auto it = hook().worlds.find(world);
+    return it != hook().worlds.end() ? it->second.last : Result{};
+}
+
+void forget_world(dWorldID world) {
+    std::lock_guard<std::mutex> g(hook().lock);
+    hook().worlds.erase(world);
+}
+
+HookCounters hook_counters() {
+    std::lock_guard<std::mutex> g(hook().lock);
+    return hook().counters;
+}
+
+}  // namespace ode_bpp
+
+extern "C" int ode_bpp_register_solvers(void) { return ode_bpp::register_all(); }
+
+extern "C" int ode_bpp_use(dWorldID world, const char* solver_name) {
+    ode_bpp::register_all();
+    return dWorldSetMLCPSolver(world, solver_name);
+}

@@ -1,0 +1,226 @@
+// The patched world step and ode-bpp's registration: precision, registry, per-world choice,
+// observer, statistics, the Dantzig fallback of the hook, and dSolveMLCPDantzig.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "ode_bpp/ode.h"
+
+namespace {
+
+struct OdeLifetime {
+    OdeLifetime() { dInitODE2(0); }
+    ~OdeLifetime() { dCloseODE(); }
+};
+
+/// A box resting on the ground (frictional contacts) and a two-link pendulum on hinges.
+class SmallScene {
+public:
+    explicit SmallScene(const char* solver) {
+        world = dWorldCreate();
+        space = dHashSpaceCreate(nullptr);
+        contacts = dJointGroupCreate(0);
+        dWorldSetGravity(world, 0, 0, -9.81);
+        dCreatePlane(space, 0, 0, 1, 0);
+        box = add_box(0, 0, 0.25, 10.0);
+        const dBodyID l1 = add_box(2, 0, 2.0, 1.0), l2 = add_box(2, 0, 1.2, 1.0);
+        hinge(nullptr, l1, 2, 0, 2.4);
+        hinge(l1, l2, 2, 0, 1.6);
+        dBodySetLinearVel(l2, 1, 0, 0);
+        if (solver != nullptr) EXPECT_EQ(dWorldSetMLCPSolver(world, solver), 1) << solver;
+    }
+    ~SmallScene() {
+        dJointGroupDestroy(contacts);
+        dSpaceDestroy(space);
+        dWorldDestroy(world);
+    }
+    void step() {
+        dSpaceCollide(space, this, &SmallScene::near);
+        dWorldStep(world, 1.0 / 60.0);
+        dJointGroupEmpty(contacts);
+    }
+    dWorldID world;
+    dSpaceID space;
+    dJointGroupID contacts;
+    dBodyID box;
+
+private:
+    dBodyID add_box(double x, double y, double z, double mass) {
+        dBodyID b = dBodyCreate(world);
+        dMass m;
+        dMassSetBoxTotal(&m, mass, 0.5, 0.5, 0.5);
+        dBodySetMass(b, &m);
+        dBodySetPosition(b, x, y, z);
+        dGeomSetBody(dCreateBox(space, 0.5, 0.5, 0.5), b);
+        return b;
+    }
+    void hinge(dBodyID a, dBodyID b, double x, double y, double z) {
+        dJointID j = dJointCreateHinge(world, nullptr);
+        dJointAttach(j, b, a);
+        dJointSetHingeAnchor(j, x, y, z);
+        dJointSetHingeAxis(j, 0, 1, 0);
+    }
+    static void near(void* data, dGeomID g1, dGeomID g2) {
+        auto* self = static_cast<SmallScene*>(data);
+        dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+        if (b1 && b2 && dAreConnected(b1, b2)) return;
+        dContact c[4];
+        const int n = dCollide(g1, g2, 4, &c[0].geom, sizeof(dContact));
+        for (int i = 0; i < n; ++i) {
+            c[i].surface.mode = dContactApprox1;
+            c[i].surface.mu = 0.8;
+            dJointAttach(dJointCreateContact(self->world, self->contacts, &c[i]), b1, b2);
+        }
+    }
+};
+
+TEST(OdeBuild, IsDoublePrecision) {
+    OdeLifetime ode;
+    EXPECT_EQ(dCheckConfiguration("ODE_double_precision"), 1);
+    EXPECT_EQ(dCheckConfiguration("ODE_single_precision"), 0);
+    dMass m;
+    dMassSetBoxTotal(&m, 30000.0, 1, 1, 1);  // zero in a single-precision library behind a double header
+    EXPECT_DOUBLE_EQ(m.mass, 30000.0);
+}
+
+TEST(OdeHook, RegistryListsDantzigAndOurSolvers) {
+    OdeLifetime ode;
+    const std::string names = dListMLCPSolvers();
+    for (const char* n : {"dantzig", "bpp", "bpp-sky", "bpp-down", "bpp-chol", "pgs"})
+        EXPECT_NE(names.find(n), std::string::npos) << n << " missing from " << names;
+}
+
+TEST(OdeHook, PerWorldChoiceAndUnknownNames) {
+    OdeLifetime ode;
+    SmallScene a("dantzig"), b("bpp");
+    EXPECT_STREQ(dWorldGetMLCPSolver(a.world), "dantzig");
+    EXPECT_STREQ(dWorldGetMLCPSolver(b.world), "bpp");
+    EXPECT_EQ(dWorldSetMLCPSolver(b.world, "no-such-solver"), 0);
+    EXPECT_STREQ(dWorldGetMLCPSolver(b.world), "bpp");
+    EXPECT_EQ(ode_bpp_use(a.world, "bpp-sky"), 1);
+    EXPECT_STREQ(dWorldGetMLCPSolver(a.world), "bpp-sky");
+}
+
+TEST(OdeHook, StatisticsNameTheSolverAndCountRows) {
+    OdeLifetime ode;
+    for (const char* solver : {"dantzig", "bpp"}) {
+        SmallScene s(solver);
+        for (int i = 0; i < 30; ++i) s.step();
+        dMLCPStepStats last, total;
+        ASSERT_EQ(dWorldGetMLCPStats(s.world, &last, &total), 1);
+        EXPECT_STREQ(last.solver, solver);
+        EXPECT_EQ(total.steps, 30u);
+        EXPECT_GE(last.islands, 2);              // the box on the ground, the pendulum
+        EXPECT_GE(last.max_rows, 10);            // two hinges: 5 rows each
+        EXPECT_EQ(last.failures, 0) << solver;
+        EXPECT_GT(total.seconds, 0.0);
+    }
+}
+
+TEST(OdeHook, BppAndDantzigAgreeOnTheTrajectory) {
+    OdeLifetime ode;
+    SmallScene d("dantzig"), b("bpp");
+    for (int i = 0; i < 120; ++i) {
+        d.step();
+        b.step();
+    }
+    const dReal* pd = dBodyGetPosition(d.box);
+    const dReal* pb = dBodyGetPosition(b.box);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(pd[k], pb[k], 1e-6);
+    EXPECT_GT(ode_bpp::hook_counters().islands, 0);
+}
+
+struct ObserverLog {
+    int before = 0, after = 0, rows = 0;
+    bool structure_ok = true;
+};
+
+void observe(const dMLCP* p, const dMLCPIslandStats* stats, void* data) {
+    auto* log = static_cast<ObserverLog*>(data);
+    if (stats != nullptr) {
+        log->after += 1;
+        return;
+    }
+    log->before += 1;
+    log->rows += p->m;
+    // the joint structure tiles the rows, and A's diagonal is intact before the solve
+    int next = 0;
+    for (int j = 0; j < p->nj; ++j) {
+        log->structure_ok &= p->joints[j].row == next && p->joints[j].m > 0;
+        log->structure_ok &= p->joints[j].body[0] < p->nb && p->joints[j].body[1] < p->nb;
+        next += p->joints[j].m;
+    }
+    log->structure_ok &= next == p->m && p->skip >= p->m;
+    for (int i = 0; i < p->m; ++i) log->structure_ok &= p->A[i * p->skip + i] > 0;
+}
+
+TEST(OdeHook, ObserverSeesIntactProblemAndStructure) {
+    OdeLifetime ode;
+    ObserverLog log;
+    SmallScene s("bpp");
+    dWorldSetMLCPObserver(s.world, &observe, &log);
+    for (int i = 0; i < 10; ++i) s.step();
+    EXPECT_GT(log.before, 0);
+    EXPECT_EQ(log.before, log.after);
+    EXPECT_TRUE(log.structure_ok);
+    dMLCPStepStats total;
+    dWorldGetMLCPStats(s.world, nullptr, &total);
+    EXPECT_EQ(log.rows, total.rows);
+}
+
+dMLCPStatus failing_solver(const dMLCP*, dMLCPIslandStats*, void*) { return dMLCPFailed; }
+dMLCPStatus nan_solver(const dMLCP* p, dMLCPIslandStats*, void*) {
+    for (int i = 0; i < p->m; ++i) p->pairsbx[2 * i + 1] = std::nan("");
+    return dMLCPSolved;
+}
+
+TEST(OdeHook, FailedSolverFallsBackToDantzigAndTheWorldStaysSane) {
+    OdeLifetime ode;
+    ASSERT_EQ(dRegisterMLCPSolver("test-failing", &failing_solver, nullptr, dMLCP_API_VERSION), 1);
+    ASSERT_EQ(dRegisterMLCPSolver("test-nan", &nan_solver, nullptr, dMLCP_API_VERSION), 1);
+    EXPECT_EQ(dRegisterMLCPSolver("dantzig", &failing_solver, nullptr, dMLCP_API_VERSION), 0);
+    EXPECT_EQ(dRegisterMLCPSolver("x", &failing_solver, nullptr, dMLCP_API_VERSION + 1), 0);
+    SmallScene ref("dantzig");
+    for (const char* name : {"test-failing", "test-nan"}) {
+        SmallScene s(name);
+        for (int i = 0; i < 60; ++i) s.step();
+        dMLCPStepStats total;
+        dWorldGetMLCPStats(s.world, nullptr, &total);
+        EXPECT_EQ(total.failures, total.islands) << name;
+        EXPECT_EQ(total.fallbacks, total.islands) << name;
+        EXPECT_TRUE(std::isfinite(dBodyGetPosition(s.box)[2]));
+    }
+    for (int i = 0; i < 60; ++i) ref.step();
+    SmallScene again("test-nan");
+    for (int i = 0; i < 60; ++i) again.step();
+    EXPECT_NEAR(dBodyGetPosition(again.box)[2], dBodyGetPosition(ref.box)[2], 1e-9);
+}
+
+TEST(OdeHook, SolveMLCPDantzigSolvesABoxedProblem) {
+    OdeLifetime ode;
+    // A = [[2,.3,.1],[.3,1.5,.2],[.1,.2,1.8]], b = [1,.9,-.2]: box [-0.1, 0.1] on row 2 (NOTES' example, no findex)
+    const int n = 3, skip = dPAD(n);
+    std::vector<dReal> A(n * skip, 0.0);
+    const double full[3][3] = {{2, .3, .1}, {.3, 1.5, .2}, {.1, .2, 1.8}};
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) A[i * skip + j] = full[i][j];
+    const dReal b[3] = {1, .9, -.2}, lo[3] = {0, -0.1, -0.1}, hi[3] = {dInfinity, 0.1, 0.1};
+    dReal x[3];
+    ASSERT_EQ(dSolveMLCPDantzig(n, A.data(), x, b, 0, lo, hi, nullptr), 1);
+    for (int i = 0; i < n; ++i) {
+        double w = -b[i];
+        for (int j = 0; j < n; ++j) w += full[i][j] * x[j];
+        const bool at_lo = std::abs(x[i] - lo[i]) < 1e-12, at_hi = std::abs(x[i] - hi[i]) < 1e-12;
+        EXPECT_GE(x[i], lo[i] - 1e-12);
+        EXPECT_LE(x[i], hi[i] + 1e-12);
+        if (at_lo) EXPECT_GE(w, -1e-10);
+        else if (at_hi) EXPECT_LE(w, 1e-10);
+        else EXPECT_NEAR(w, 0.0, 1e-10);
+    }
+    EXPECT_EQ(dSolveMLCPDantzig(0, A.data(), x, b, 0, lo, hi, nullptr), 0);
+}
+
+}  // namespace

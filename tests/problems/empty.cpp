@@ -1,0 +1,1 @@
+// keeps the problems library non-empty before any generator exists

@@ -34,11 +34,11 @@ test: build
 # The unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
 test-sanitize: ode
 	@cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Debug -DODE_BPP_SANITIZE=ON \
-	  -DODE_BPP_BUILD_BENCH=OFF -DODE_ROOT=$(abspath $(BUILD))/ode-install >/dev/null
+	  -DODE_BPP_BUILD_BENCH=OFF -DODE_BPP_BUILD_DEMOS=OFF -DODE_ROOT=$(abspath $(BUILD))/ode-install >/dev/null
 	@echo "[test-sanitize] compiling the unit tests with ASan+UBSan"
 	@cmake --build $(ASAN_DIR) -j$(JOBS)
 	@cd $(ASAN_DIR) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest --output-on-failure -j$(JOBS) -L unit --timeout 1200
+	  ctest --output-on-failure -j$(JOBS) -L "unit|integration" --timeout 1200
 
 # The headline comparison: the scenes stepped with ODE's Dantzig and with ode-bpp.
 demo: build

@@ -23,7 +23,7 @@ fi
 
 version=$(cut -d' ' -f3 "$SRC/.fetched")
 echo "[ode] preparing patched copy of ODE $version"
-rm -rf "$WORK" "$PREFIX"
+rm -rf "$WORK"
 cp -a "$SRC" "$WORK"
 for p in "${patches[@]}"; do
   if ! patch -d "$WORK" -p1 --dry-run --quiet < "$p" >/dev/null 2>&1; then
@@ -54,12 +54,21 @@ if ! make -j"$(nproc)" >>"$log" 2>&1; then
   grep -m 20 -E "error|Error" "$log" >&2 || tail -n 30 "$log" >&2
   echo "[ode] error: build failed (see $log)" >&2; exit 1
 fi
-make install >>"$log" 2>&1 || { tail -n 20 "$log" >&2; echo "[ode] error: install failed" >&2; exit 1; }
+# install into a staging copy and swap it in at the end, so that a rebuild never leaves
+# programs that use the previous install without a library
+stage=$BUILD/ode-stage
+rm -rf "$stage"
+make install DESTDIR="$stage" >>"$log" 2>&1 || { tail -n 20 "$log" >&2; echo "[ode] error: install failed" >&2; exit 1; }
+new=$stage$PREFIX
 # drawstuff is not installed by ODE's Makefiles; keep it beside the library for the viewer
-mkdir -p "$PREFIX/include/drawstuff" "$PREFIX/share/drawstuff"
-cp include/drawstuff/*.h "$PREFIX/include/drawstuff/"
-cp drawstuff/src/.libs/libdrawstuff.a "$PREFIX/lib/" 2>/dev/null || cp drawstuff/src/libdrawstuff.la "$PREFIX/lib/" 2>/dev/null || true
-cp drawstuff/textures/*.ppm "$PREFIX/share/drawstuff/"
-grep -q '^#define dDOUBLE' "$PREFIX/include/ode/precision.h" || { echo "[ode] error: installed precision.h is not double" >&2; exit 1; }
-echo "$stamp" > "$PREFIX/.stamp"
+mkdir -p "$new/include/drawstuff" "$new/share/drawstuff"
+cp include/drawstuff/*.h "$new/include/drawstuff/"
+cp drawstuff/src/.libs/libdrawstuff.a "$new/lib/"
+cp drawstuff/textures/*.ppm "$new/share/drawstuff/"
+grep -q '^#define dDOUBLE' "$new/include/ode/precision.h" || { echo "[ode] error: installed precision.h is not double" >&2; exit 1; }
+echo "$stamp" > "$new/.stamp"
+rm -rf "$PREFIX.old"
+[ -d "$PREFIX" ] && mv "$PREFIX" "$PREFIX.old"
+mv "$new" "$PREFIX"
+rm -rf "$PREFIX.old" "$stage"
 echo "[ode] installed ODE $version (double) in $PREFIX"

@@ -12,6 +12,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <unordered_map>
@@ -83,6 +85,8 @@ int count_tight(const std::vector<RowState>& states) {
 }
 
 dMLCPStatus to_ode_status(const Result& r) {
+    // an iterative method's answer after its fixed sweep count is its answer, as in quickstep
+    if (r.method == Method::Pgs && r.status == Status::MaxIterations) return dMLCPSolved;
     switch (r.status) {
         case Status::Converged: return dMLCPSolved;
         case Status::FallbackUsed:
@@ -152,8 +156,37 @@ int register_all() {
     return registered;
 }
 
+/// One line on stderr (and in ODE_BPP_SUMMARY_FILE if set) when the process ends, if
+/// ODE_BPP_SUMMARY is set: what ode-bpp-run promises about a launched program.
+void print_summary_at_exit() {
+    const char* want = std::getenv("ODE_BPP_SUMMARY");
+    if (want == nullptr || want[0] == '\0' || std::strcmp(want, "0") == 0) return;
+    dMLCPStepStats total{};
+    const bool any = dGetMLCPProcessStats(&total) != 0;
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "ode-bpp: solver=%s steps=%lu islands=%d rows=%d pivots=%ld fallbacks=%d failures=%d "
+                  "solve_seconds=%.6f%s\n",
+                  total.solver != nullptr ? total.solver : "none", total.steps, total.islands, total.rows,
+                  total.pivots, total.fallbacks, total.failures, total.seconds,
+                  any ? "" : " (no world step with constraints)");
+    std::fputs(line, stderr);
+    if (const char* path = std::getenv("ODE_BPP_SUMMARY_FILE"); path != nullptr && path[0] != '\0') {
+        if (std::FILE* f = std::fopen(path, "a")) {
+            std::fputs(line, f);
+            std::fclose(f);
+        }
+    }
+}
+
+int register_at_load() {
+    const int n = register_all();
+    std::atexit(&print_summary_at_exit);  // after ODE's registry exists, so it runs before its teardown
+    return n;
+}
+
 // Registration when the library loads, so that linking (or preloading) is enough.
-[[maybe_unused]] const int g_registered_at_load = register_all();
+[[maybe_unused]] const int g_registered_at_load = register_at_load();
 
 }  // namespace
 

@@ -30,7 +30,9 @@ public:
         hinge(nullptr, l1, 2, 0, 2.4);
         hinge(l1, l2, 2, 0, 1.6);
         dBodySetLinearVel(l2, 1, 0, 0);
-        if (solver != nullptr) EXPECT_EQ(dWorldSetMLCPSolver(world, solver), 1) << solver;
+        if (solver != nullptr) {
+            EXPECT_EQ(dWorldSetMLCPSolver(world, solver), 1) << solver;
+        }
     }
     ~SmallScene() {
         dJointGroupDestroy(contacts);
@@ -216,9 +218,13 @@ TEST(OdeHook, SolveMLCPDantzigSolvesABoxedProblem) {
         const bool at_lo = std::abs(x[i] - lo[i]) < 1e-12, at_hi = std::abs(x[i] - hi[i]) < 1e-12;
         EXPECT_GE(x[i], lo[i] - 1e-12);
         EXPECT_LE(x[i], hi[i] + 1e-12);
-        if (at_lo) EXPECT_GE(w, -1e-10);
-        else if (at_hi) EXPECT_LE(w, 1e-10);
-        else EXPECT_NEAR(w, 0.0, 1e-10);
+        if (at_lo) {
+            EXPECT_GE(w, -1e-10);
+        } else if (at_hi) {
+            EXPECT_LE(w, 1e-10);
+        } else {
+            EXPECT_NEAR(w, 0.0, 1e-10);
+        }
     }
     EXPECT_EQ(dSolveMLCPDantzig(0, A.data(), x, b, 0, lo, hi, nullptr), 0);
 }

@@ -12,7 +12,7 @@ install(DIRECTORY ${ODE_ROOT}/include/ode DESTINATION ${CMAKE_INSTALL_INCLUDEDIR
 install(FILES ${ODE_ROOT}/lib/libode.so.8.0.2 ${ODE_ROOT}/lib/libode.so.8 ${ODE_ROOT}/lib/libode.so
   DESTINATION ${CMAKE_INSTALL_LIBDIR})
 
-# ode_bpp's link interface names ode_bpp::ode once installed (ode_bpp/CMakeLists.txt);
+# ode_bpp's link interface names ode_bpp::libode once installed (ode_bpp/CMakeLists.txt);
 # the config file recreates that imported target relative to the install prefix
 install(EXPORT ode_bppTargets NAMESPACE ode_bpp:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/ode_bpp)
 configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/ode_bppConfig.cmake.in
@@ -21,5 +21,7 @@ write_basic_package_version_file(${CMAKE_BINARY_DIR}/ode_bppConfigVersion.cmake 
 install(FILES ${CMAKE_BINARY_DIR}/ode_bppConfig.cmake ${CMAKE_BINARY_DIR}/ode_bppConfigVersion.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/ode_bpp)
 
+# relocatable: the prefix is found relative to the .pc file itself
+file(RELATIVE_PATH ODE_BPP_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 configure_file(${CMAKE_SOURCE_DIR}/cmake/ode_bpp.pc.in ${CMAKE_BINARY_DIR}/ode_bpp.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/ode_bpp.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

@@ -10,8 +10,8 @@ PACKAGES=(
   libeigen3-dev libccd-dev
   googletest libgtest-dev libbenchmark-dev
   clang libclang-rt-14-dev
-  abigail-tools libode8
-  libx11-dev libgl-dev libglu1-mesa-dev xvfb x11-apps imagemagick
+  abigail-tools libode8 libode-dev python3
+  libx11-dev libgl-dev libglu1-mesa-dev libpng-dev xvfb xauth x11-apps imagemagick
   gnuplot-nox valgrind
 )
 PACKAGES+=("$@")

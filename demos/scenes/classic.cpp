@@ -2,6 +2,21 @@
 
 namespace ode_bpp::scenes {
 
-std::vector<std::pair<std::string, SceneFactory>> classic_scenes() { return {}; }
+// Defined one per file in classic_<name>.cpp.
+std::unique_ptr<Scene> make_classic_boxstack();
+std::unique_ptr<Scene> make_classic_chain();
+std::unique_ptr<Scene> make_classic_buggy();
+std::unique_ptr<Scene> make_classic_cannon();
+std::unique_ptr<Scene> make_classic_motors();
+
+std::vector<std::pair<std::string, SceneFactory>> classic_scenes() {
+    return {
+        {"boxstack", make_classic_boxstack},
+        {"chain", make_classic_chain},
+        {"buggy", make_classic_buggy},
+        {"cannon", make_classic_cannon},
+        {"motors", make_classic_motors},
+    };
+}
 
 }  // namespace ode_bpp::scenes

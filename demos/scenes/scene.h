@@ -44,6 +44,9 @@ struct SuccessReport {
 /// Owns the ODE world, the collision space and the contact group of one scene run.
 class SceneWorld {
 public:
+    /// Creates the world (gravity, ERP, CFM from params), a hash space and the ground plane,
+    /// and selects params.solver; throws std::invalid_argument if no such solver is registered.
+    /// Calls dInitODE2 itself (ODE counts nested initialisations) and dCloseODE when destroyed.
     explicit SceneWorld(const SceneParams& params);
     ~SceneWorld();
     SceneWorld(const SceneWorld&) = delete;
@@ -51,6 +54,7 @@ public:
 
     dWorldID world() const { return world_; }
     dSpaceID space() const { return space_; }
+    dGeomID ground() const { return ground_; }       ///< the plane z = 0
     const SceneParams& params() const { return params_; }
     double time() const { return time_; }
     long steps() const { return steps_; }
@@ -67,6 +71,17 @@ public:
     void set_contact_tuner(ContactTuner tuner) { tuner_ = std::move(tuner); }
     int max_contacts_per_pair = 4;
 
+    /// Creates a body that the world tracks: step() checks its position for finiteness.
+    dBodyID create_body();
+    const std::vector<dBodyID>& bodies() const { return bodies_; }
+    /// Registers a joint whose anchors must coincide (ball, hinge, universal); see max_joint_error().
+    void track_joint(dJointID joint);
+    /// Largest distance [m] between the two bodies' anchor points over the tracked joints:
+    /// the constraint drift a sound simulation keeps small.
+    double max_joint_error() const;
+    /// Contact joints created by the last step().
+    int last_contacts() const { return last_contacts_; }
+
 private:
     static void near_callback(void* data, dGeomID a, dGeomID b);
     void collide_pair(dGeomID a, dGeomID b);
@@ -75,7 +90,12 @@ private:
     dWorldID world_ = nullptr;
     dSpaceID space_ = nullptr;
     dJointGroupID contacts_ = nullptr;
+    dGeomID ground_ = nullptr;
+    std::vector<dBodyID> bodies_;
+    std::vector<dJointID> tracked_joints_;
+    int last_contacts_ = 0;
     std::vector<std::pair<dGeomID, dGeomID>> excluded_;
+    std::vector<dContact> contact_buffer_;  ///< dCollide's output, reused from pair to pair
     ContactTuner tuner_;
     double time_ = 0;
     long steps_ = 0;
@@ -98,13 +118,18 @@ public:
     virtual double default_seconds() const { return 20.0; }
 };
 
+/// True if an MLCP solver of that name is registered with ODE (see dListMLCPSolvers()).
+bool is_solver_registered(const std::string& name);
+/// The registered MLCP solver names.
+std::vector<std::string> registered_solvers();
+
 /// All scenes by name: the paper's six (crane, winch, parkour, offshore, forklift, forwarder)
 /// and ODE's classic demos, ported.
 std::vector<std::string> scene_names();
 std::unique_ptr<Scene> make_scene(const std::string& name);  ///< nullptr for an unknown name
 
 /// Each scene's .cpp defines a factory (e.g. `std::unique_ptr<Scene> make_crane();`), and
-/// registry.cpp lists them all explicitly: self-registering statics would be dropped by the
+/// scene.cpp lists them all explicitly: self-registering statics would be dropped by the
 /// linker from a static library.
 
 }  // namespace ode_bpp::scenes

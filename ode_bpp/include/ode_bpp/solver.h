@@ -141,6 +141,13 @@ struct Result {
     /// Table 4's factor error (NaN unless requested and meaningful for the method).
     double factor_error = -1;
     std::vector<RowState> states; ///< final index set, original row order (for warm starts)
+    /// Scale-free natural residual: max_i |x_i - clamp(x_i - w_i/A_ii, lo_i(x), hi_i(x))| / s_i with
+    /// s_i = ((|A||x|)_i + |b_i|) / A_ii, the quantity Options::tolerance bounds (ode_bpp/residuals.h).
+    double scaled_natural_residual = 0;
+    /// Deleted factors rejected by the loss-of-accuracy check and replaced by a refactorization.
+    int accuracy_refactors = 0;
+    /// delta of the A + delta*I the answer solves (0 unless fallback is "regularized").
+    double regularization = 0;
 };
 
 /// Solves the problem with the chosen method and writes x (n entries).

@@ -27,8 +27,8 @@ struct SkylineShape {
     /// Rows stored in column k, diagonal included: sky[k] - k + 1.
     int height(int k) const { return sky[k] - k + 1; }
     /// Smallest column j whose storage holds row r (sky[j] >= r), so row r of L lives in
-    /// columns first_column_holding(r) .. r. Deleting row r writes zeros into exactly these
-    /// columns of row r, so a caller restoring L from L0 must copy from there. O(log n).
+    /// columns first_column_holding(r) .. r. Deleting row r writes zeros into row r of these
+    /// columns (restore them with SkylineMatrix::copy_rows_from). O(log n).
     int first_column_holding(int r) const;
     /// True when sky is non-decreasing with k <= sky[k] <= n-1 and every column fits before
     /// the next one (colptr[k+1] - colptr[k] >= height(k)). Gaps between columns are allowed:
@@ -54,11 +54,18 @@ public:
     std::vector<double>& values() { return values_; }
     const std::vector<double>& values() const { return values_; }
 
-    /// Copies columns k0 .. n-1 of other (same shape) into this: the part of L0 that row
-    /// deletions at indices >= k0 may change.
+    /// Copies columns k0 .. n-1 of other (same shape) into this. Deleting rows >= k0 changes
+    /// these columns and, in earlier columns, only the deleted rows (see copy_rows_from).
     void copy_tail_from(const SkylineMatrix& other, int k0);
     /// Copies columns 0 .. k1-1 of other (same shape) into this.
     void copy_head_from(const SkylineMatrix& other, int k1);
+    /// Copies, for each r in rows, the stored entries L(r, j) with j < min(r, k_end) from other
+    /// (same shape). Deleting or removing row r zeroes exactly its entries in columns < r, so
+    ///     copy_tail_from(L0, k0); copy_rows_from(L0, rows_changed_before, k0);
+    /// restores L0 after deletions of rows_changed_before (all >= k0) at O(copy of the tail +
+    /// one row each) instead of a copy from first_column_holding(min row), which for dense
+    /// storage is the whole matrix.
+    void copy_rows_from(const SkylineMatrix& other, const std::vector<int>& rows, int k_end);
 
 private:
     SkylineShape shape_;

@@ -1,0 +1,43 @@
+#include "baselines/dantzig.h"
+
+#include <ode/ode.h>
+
+#include <vector>
+
+namespace ode_bpp::baselines {
+
+bool solve_dantzig(const Problem& p, std::vector<double>& x) {
+    static_assert(sizeof(dReal) == sizeof(double), "the patched ODE must be double precision");
+    const int n = p.n;
+    const int stride = dPAD(n);
+    std::vector<double> A(static_cast<std::size_t>(n) * stride, 0.0);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j <= i; ++j) {
+            const double a = p.A[static_cast<std::ptrdiff_t>(i) * p.lda + j];
+            A[static_cast<std::size_t>(i) * stride + j] = a;
+            A[static_cast<std::size_t>(j) * stride + i] = a;
+        }
+    std::vector<double> b(n), lo(n), hi(n);
+    std::vector<int> findex(n, -1);
+    for (int i = 0; i < n; ++i) {
+        b[i] = p.b[i];
+        lo[i] = p.lo[i];
+        hi[i] = p.hi[i];
+        if (p.findex != nullptr) findex[i] = p.findex[i];
+        // ODE's Dantzig asserts lo <= 0 <= hi on every row (an abort() in its checked build).
+        // Validation leaves two kinds of rows to their meaning rather than their values:
+        // the first nub rows are unbounded, and a friction row's lo is -|mu x_f| (hi holds mu).
+        if (i < p.nub) {
+            lo[i] = -dInfinity;
+            hi[i] = dInfinity;
+        } else if (findex[i] >= 0) {
+            lo[i] = -hi[i];
+        }
+    }
+    x.assign(static_cast<std::size_t>(n), 0.0);
+    const int ok = dSolveMLCPDantzig(n, A.data(), x.data(), b.data(), p.nub, lo.data(), hi.data(), findex.data());
+    if (ok == 0) x.assign(static_cast<std::size_t>(n), 0.0);
+    return ok != 0;
+}
+
+}  // namespace ode_bpp::baselines

@@ -1,0 +1,46 @@
+#include "linalg/cost_model.h"
+
+#include <algorithm>
+
+namespace ode_bpp::linalg {
+
+namespace {
+
+/// Multiply-adds spent on column k by the left-looking update: for every earlier column j
+/// reaching row k (j_first <= j < k), rows k .. sky[j]; computed from prefix sums of sky.
+double column_update_cost(const std::vector<double>& sky_prefix, int j_first, int k) {
+    const double rows_summed = sky_prefix[k] - sky_prefix[j_first];
+    return rows_summed - static_cast<double>(k - j_first) * (k - 1);
+}
+
+}  // namespace
+
+CostModel::CostModel(const SkylineShape& shape)
+    : delete_suffix_(static_cast<std::size_t>(shape.n) + 1, 0.0),
+      refactor_suffix_(static_cast<std::size_t>(shape.n) + 1, 0.0),
+      colptr_(shape.colptr) {
+    const int n = shape.n;
+    std::vector<double> sky_prefix(static_cast<std::size_t>(n) + 1, 0.0);
+    for (int k = 0; k < n; ++k) sky_prefix[k + 1] = sky_prefix[k] + shape.sky[k];
+    std::vector<double> column_cost(static_cast<std::size_t>(n), 0.0);
+    int j_first = 0;
+    for (int k = 0; k < n; ++k) {
+        while (shape.sky[j_first] < k) ++j_first;
+        column_cost[k] = column_update_cost(sky_prefix, j_first, k) + shape.height(k);
+    }
+    for (int k = n - 1; k >= 0; --k) {
+        delete_suffix_[k] = delete_suffix_[k + 1] + shape.height(k);
+        refactor_suffix_[k] = refactor_suffix_[k + 1] + column_cost[k];
+    }
+}
+
+double CostModel::delete_cost(int i) const {
+    const int n = static_cast<int>(delete_suffix_.size()) - 1;
+    return delete_suffix_[std::min(i + 1, n)];
+}
+
+double CostModel::refactor_cost(int k0) const { return refactor_suffix_[k0]; }
+
+double CostModel::copy_cost(int k0) const { return static_cast<double>(colptr_.back() - colptr_[k0]); }
+
+}  // namespace ode_bpp::linalg

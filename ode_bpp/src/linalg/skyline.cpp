@@ -1,0 +1,90 @@
+#include "linalg/skyline.h"
+
+#include <algorithm>
+#include <cassert>
+#include <utility>
+
+namespace ode_bpp::linalg {
+
+namespace {
+
+std::vector<std::ptrdiff_t> packed_column_pointers(const std::vector<int>& sky) {
+    const int n = static_cast<int>(sky.size());
+    std::vector<std::ptrdiff_t> colptr(static_cast<std::size_t>(n) + 1, 0);
+    for (int k = 0; k < n; ++k) colptr[k + 1] = colptr[k] + (sky[k] - k + 1);
+    return colptr;
+}
+
+}  // namespace
+
+SkylineShape SkylineShape::from_row_profile(const std::vector<int>& first) {
+    SkylineShape shape;
+    shape.n = static_cast<int>(first.size());
+    // last_row_starting[j] = largest i with first[i] == j; sky is its running maximum,
+    // which is max{ i : first[i] <= k } (every row i >= k with first[i] <= k reaches column k).
+    std::vector<int> last_row_starting(first.size(), -1);
+    for (int i = 0; i < shape.n; ++i) {
+        assert(0 <= first[i] && first[i] <= i);
+        last_row_starting[first[i]] = i;
+    }
+    shape.sky.resize(first.size());
+    int reach = -1;
+    for (int k = 0; k < shape.n; ++k) {
+        reach = std::max({reach, last_row_starting[k], k});
+        shape.sky[k] = reach;
+    }
+    shape.colptr = packed_column_pointers(shape.sky);
+    return shape;
+}
+
+SkylineShape SkylineShape::dense(int n) {
+    SkylineShape shape;
+    shape.n = n;
+    shape.sky.assign(static_cast<std::size_t>(n), n - 1);
+    shape.colptr = packed_column_pointers(shape.sky);
+    return shape;
+}
+
+int SkylineShape::first_column_holding(int r) const {
+    return static_cast<int>(std::lower_bound(sky.begin(), sky.end(), r) - sky.begin());
+}
+
+bool SkylineShape::valid() const {
+    if (n < 0 || static_cast<int>(sky.size()) != n || static_cast<int>(colptr.size()) != n + 1) return false;
+    if (colptr[0] < 0) return false;
+    for (int k = 0; k < n; ++k) {
+        if (sky[k] < k || sky[k] > n - 1) return false;
+        if (k > 0 && sky[k] < sky[k - 1]) return false;
+        if (colptr[k + 1] - colptr[k] < height(k)) return false;
+    }
+    return true;
+}
+
+SkylineMatrix::SkylineMatrix(SkylineShape shape) : shape_(std::move(shape)) {
+    assert(shape_.valid());
+    values_.assign(static_cast<std::size_t>(shape_.size()), 0.0);
+}
+
+void SkylineMatrix::copy_tail_from(const SkylineMatrix& other, int k0) {
+    assert(other.shape_.colptr == shape_.colptr);
+    if (k0 >= n()) return;
+    const std::ptrdiff_t begin = shape_.colptr[k0];
+    std::copy(other.values_.begin() + begin, other.values_.end(), values_.begin() + begin);
+}
+
+void SkylineMatrix::copy_head_from(const SkylineMatrix& other, int k1) {
+    assert(other.shape_.colptr == shape_.colptr);
+    if (k1 <= 0) return;
+    const std::ptrdiff_t end = shape_.colptr[std::min(k1, n())];
+    std::copy(other.values_.begin(), other.values_.begin() + end, values_.begin());
+}
+
+void SkylineMatrix::copy_rows_from(const SkylineMatrix& other, const std::vector<int>& rows, int k_end) {
+    assert(other.shape_.colptr == shape_.colptr);
+    for (int r : rows) {
+        const int end = std::min(r, k_end);
+        for (int j = shape_.first_column_holding(r); j < end; ++j) at(r, j) = other.at(r, j);
+    }
+}
+
+}  // namespace ode_bpp::linalg

@@ -1,0 +1,98 @@
+#include "linalg/skyline_cholesky.h"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+namespace ode_bpp::linalg {
+
+namespace {
+
+using Segment = Eigen::Map<Eigen::VectorXd>;
+using ConstSegment = Eigen::Map<const Eigen::VectorXd>;
+
+bool is_removed(const std::vector<char>& removed, int k) { return !removed.empty() && removed[k] != 0; }
+
+/// L(r, j) = 0 for every stored j < r.
+void zero_row(SkylineMatrix& L, int r) {
+    for (int j = L.shape().first_column_holding(r); j < r; ++j) L.at(r, j) = 0.0;
+}
+
+void make_identity_column(SkylineMatrix& L, int k) {
+    double* column = L.column(k);
+    column[0] = 1.0;
+    std::fill(column + 1, column + L.shape().height(k), 0.0);
+}
+
+#ifndef NDEBUG
+bool is_identity_row_column(const SkylineMatrix& L, int k) {
+    for (int r = k + 1; r <= L.sky(k); ++r)
+        if (L.at(r, k) != 0.0) return false;
+    for (int j = L.shape().first_column_holding(k); j < k; ++j)
+        if (L.at(k, j) != 0.0) return false;
+    return L.at(k, k) == 1.0;
+}
+#endif
+
+/// Zeroing the removed rows up front makes every later update of a removed row exactly zero
+/// (L(r,k) = Ap(r,k) - sum_j L(r,j) L(k,j) with both terms zero), so the main loop needs no test.
+void embed_removed(SkylineMatrix& L, int k0, const std::vector<char>& removed) {
+    if (removed.empty()) return;
+    assert(static_cast<int>(removed.size()) == L.n());
+    for (int k = 0; k < L.n(); ++k) {
+        if (!removed[k]) continue;
+        if (k < k0) {
+            assert(is_identity_row_column(L, k));
+            continue;
+        }
+        zero_row(L, k);
+        make_identity_column(L, k);
+    }
+}
+
+/// Left-looking step for column k: L(k:sky[k], k) -= sum_j L(k,j) L(k:sky[j], j) over the
+/// earlier columns j >= j_first that reach row k (sky[j] <= sky[k] keeps it in storage).
+/// Skips exact zeros L(k,j) = 0: removed indices, or zeros outside the profile that stay zero.
+void subtract_earlier_columns(SkylineMatrix& L, int k, int j_first) {
+    double* target = L.column(k);
+    for (int j = j_first; j < k; ++j) {
+        const double* source = L.column(j) + (k - j);
+        const double l_kj = source[0];
+        if (l_kj == 0.0) continue;
+        const int length = L.sky(j) - k + 1;
+        Segment(target, length).noalias() -= l_kj * ConstSegment(source, length);
+    }
+}
+
+/// The pivot d_k = Ap(k,k) - sum_j L(k,j)² sums earlier_columns terms bounded by Ap(k,k): its
+/// rounding error is about (earlier_columns + 1) eps Ap(k,k). A pivot below that is not
+/// distinguishable from zero.
+bool pivot_is_positive(double pivot, double diagonal, int earlier_columns) {
+    const double noise = (earlier_columns + 1) * std::numeric_limits<double>::epsilon() * diagonal;
+    return diagonal > 0.0 && pivot > noise && std::isfinite(pivot);
+}
+
+}  // namespace
+
+int skyline_cholesky(SkylineMatrix& L, int k0, const std::vector<char>& removed) {
+    const int n = L.n();
+    embed_removed(L, k0, removed);
+    int j_first = k0 < n ? L.shape().first_column_holding(k0) : n;
+    for (int k = k0; k < n; ++k) {
+        while (L.sky(j_first) < k) ++j_first;
+        if (is_removed(removed, k)) continue;
+        double* column = L.column(k);
+        const double diagonal = column[0];
+        subtract_earlier_columns(L, k, j_first);
+        if (!pivot_is_positive(column[0], diagonal, k - j_first)) return k;
+        const double l_kk = std::sqrt(column[0]);
+        column[0] = l_kk;
+        Segment(column + 1, L.shape().height(k) - 1) *= 1.0 / l_kk;
+    }
+    return -1;
+}
+
+}  // namespace ode_bpp::linalg

@@ -1,0 +1,70 @@
+#include "ordering/order_rows.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "ordering/cuthill_mckee.h"
+#include "ordering/graph.h"
+
+namespace ode_bpp::ordering {
+
+namespace {
+
+bool blocks_consistent(int n, int num_blocks, const int* block_row, const int* block_body) {
+    if (num_blocks <= 0 || block_row == nullptr || block_body == nullptr) return false;
+    if (block_row[0] != 0 || block_row[num_blocks] != n) return false;
+    for (int k = 0; k < num_blocks; ++k)
+        if (block_row[k + 1] < block_row[k]) return false;
+    return true;
+}
+
+std::vector<int> identity_order(int n) {
+    std::vector<int> perm(static_cast<std::size_t>(n));
+    std::iota(perm.begin(), perm.end(), 0);
+    return perm;
+}
+
+std::vector<int> graph_order(int n, const double* A, int lda, int num_blocks, const int* block_row,
+                             const int* block_body, bool reverse) {
+    if (blocks_consistent(n, num_blocks, block_row, block_body)) {
+        const Graph blocks = block_graph(num_blocks, block_row, block_body);
+        return expand_blocks(cuthill_mckee(blocks, reverse), block_row, num_blocks);
+    }
+    if (A == nullptr) return identity_order(n);
+    return cuthill_mckee(graph_from_lower(A, lda, n), reverse);
+}
+
+void move_flagged_last(std::vector<int>& perm, const std::vector<char>& flagged) {
+    std::stable_partition(perm.begin(), perm.end(), [&flagged](int old) { return flagged[old] == 0; });
+}
+
+}  // namespace
+
+bool is_permutation(const std::vector<int>& perm, int n) {
+    if (static_cast<int>(perm.size()) != n) return false;
+    std::vector<char> seen(static_cast<std::size_t>(n), 0);
+    for (int v : perm) {
+        if (v < 0 || v >= n || seen[v]) return false;
+        seen[v] = 1;
+    }
+    return true;
+}
+
+std::vector<int> expand_blocks(const std::vector<int>& block_perm, const int* block_row, int num_blocks) {
+    std::vector<int> perm;
+    perm.reserve(static_cast<std::size_t>(block_row[num_blocks]));
+    for (int block : block_perm)
+        for (int row = block_row[block]; row < block_row[block + 1]; ++row) perm.push_back(row);
+    return perm;
+}
+
+std::vector<int> order_rows(int n, const double* A, int lda, int num_blocks, const int* block_row,
+                            const int* block_body, OrderingKind kind, const std::vector<char>* likely_tight) {
+    std::vector<int> perm = kind == OrderingKind::Identity
+        ? identity_order(n)
+        : graph_order(n, A, lda, num_blocks, block_row, block_body, kind == OrderingKind::ReverseCuthillMcKee);
+    if (likely_tight != nullptr) move_flagged_last(perm, *likely_tight);
+    return perm;
+}
+
+}  // namespace ode_bpp::ordering

@@ -1,0 +1,32 @@
+// The boxed LCP with fixed bounds that one run of the pivoting loop solves (paper Eq. 3-6),
+// in the permuted index space of the factor strategy.
+#pragma once
+
+#include <vector>
+
+#include "ode_bpp/solver.h"
+#include "pivoting/symmetric_rows.h"
+
+namespace ode_bpp::pivoting {
+
+/// (A + shift I) x = b + w with, per row, x = lo and w >= 0, x = hi and w <= 0, or
+/// lo < x < hi and w = 0. All vectors n entries, permuted space.
+struct BoxedLcp {
+    const SymmetricRows* A = nullptr;
+    double shift = 0;               ///< regularization delta added to A's diagonal
+    std::vector<double> b, lo, hi;  ///< lo may be -inf, hi +inf
+    std::vector<char> always_free;  ///< rows < nub and rows with infinite bounds: never tight
+    /// Murty's fixed order: rank of each row (n distinct values; the driver uses the caller's
+    /// original index, so every strategy pivots alike), or empty for the permuted index.
+    std::vector<int> murty_rank;
+
+    int n() const { return A->n(); }
+    /// A row with lo == hi is pinned at that value: always tight and never infeasible (ODE's
+    /// Dantzig treats lo = hi = 0 friction rows the same way).
+    bool is_pinned(int i) const { return lo[i] == hi[i]; }
+};
+
+/// The value a tight row takes: lo for AtLo, hi for AtHi (paper Alg. 1 lines 6-7).
+inline double tight_value(const BoxedLcp& lcp, int i, RowState s) { return s == RowState::AtLo ? lcp.lo[i] : lcp.hi[i]; }
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,294 @@
+#include "pivoting/bpp_driver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+#include "pivoting/boxed_lcp.h"
+#include "pivoting/free_solver.h"
+#include "pivoting/friction_update.h"
+#include "pivoting/ordering_choice.h"
+#include "pivoting/pivot_loop.h"
+#include "pivoting/symmetric_rows.h"
+
+namespace ode_bpp::pivoting {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Regularize-on-breakdown ladder, relative to max_i A_ii (an upper bound of max |A_ij| for SPD A).
+constexpr double kFirstShift = 1e-12;
+constexpr double kShiftGrowth = 100;
+constexpr double kLastShift = 1e-6;
+/// Continuation: delta_k = kContinuationStart * max diag * kContinuationSpan^(k / stages).
+constexpr double kContinuationStart = 1e-4;
+constexpr double kContinuationSpan = 1e-8;
+
+class BppDriver {
+public:
+    BppDriver(const Problem& p, const SymmetricRows& A, const Options& o) : p_(p), A_original_(A), o_(o) {
+        settings_.max_pivots = std::max(1, o.max_pivots);
+        settings_.murty_after = std::max(0, o.murty_after);
+        settings_.tolerance = o.tolerance;
+        settings_.record_steps = o.record_steps;
+    }
+
+    Result run(std::vector<double>& x_out) {
+        perm_ = choose_ordering(o_.method, p_, A_original_, o_.warm_start);
+        Ap_ = A_original_.permuted(perm_);
+        solver_ = make_free_solver(o_.method, Ap_);
+        Result r;
+        if (!solver_) {
+            x_out.assign(static_cast<std::size_t>(p_.n), 0.0);
+            r.status = Status::InvalidInput;
+            r.message = std::string("method ") + to_string(o_.method) + " is not a BPP method or is not available";
+            return r;
+        }
+        max_diag_ = Ap_.max_diag();
+        build_permuted_problem();
+        std::vector<RowState> states = permuted_warm_start();
+        std::vector<double> x;
+        const bool ok = o_.friction == FrictionMode::Consistent ? solve_consistent(states, x) : solve_frozen(states, x);
+        return finish(ok, states, x, x_out);
+    }
+
+private:
+    // ---- set-up, permuted space -------------------------------------------------------
+    void build_permuted_problem() {
+        const int n = p_.n;
+        const std::vector<int> to_new = inverse_permutation(perm_);
+        lcp_.A = &Ap_;
+        lcp_.b.resize(n);
+        lcp_.lo.resize(n);
+        lcp_.hi.resize(n);
+        lcp_.always_free.assign(static_cast<std::size_t>(n), 0);
+        lcp_.murty_rank = perm_;  // the caller's order: every strategy makes the same pivots
+        for (int i = 0; i < n; ++i) {
+            const int old = perm_[i];
+            lcp_.b[i] = p_.b[old];
+            const bool unbounded = old < p_.nub;
+            lcp_.lo[i] = unbounded ? -kInf : p_.lo[old];
+            lcp_.hi[i] = unbounded ? kInf : p_.hi[old];
+            lcp_.always_free[i] = lcp_.lo[i] == -kInf && lcp_.hi[i] == kInf;
+            if (p_.findex != nullptr && p_.findex[old] >= 0) {
+                friction_rows_.push_back(i);
+                normal_of_.push_back(to_new[p_.findex[old]]);
+                mu_.push_back(p_.hi[old]);
+                lcp_.always_free[i] = 0;
+            }
+        }
+    }
+
+    std::vector<RowState> permuted_warm_start() const {
+        std::vector<RowState> states(static_cast<std::size_t>(p_.n), RowState::Free);
+        if (!o_.warm_start.empty())
+            for (int i = 0; i < p_.n; ++i) states[i] = o_.warm_start[perm_[i]];
+        return states;
+    }
+
+    // ---- friction policies -------------------------------------------------------------
+    /// Dantzig's semantics (ODE lcp.cpp): every friction row fixed at 0 while the others are
+    /// solved, then bounds +-|mu x_normal| from those normals, kept fixed for a second solve.
+    bool solve_frozen(std::vector<RowState>& states, std::vector<double>& x) {
+        if (friction_rows_.empty()) return solve_fixed(states, x);
+        const std::vector<RowState> requested = states;
+        set_friction_bounds(std::vector<double>(friction_rows_.size(), 0.0));
+        if (!solve_fixed(states, x)) return false;
+        set_friction_bounds(friction_targets(x));
+        for (int i : friction_rows_) states[i] = requested[i];
+        return solve_fixed(states, x);
+    }
+
+    /// Outer loop on the friction bounds (FrictionBoundUpdate: damped, Anderson-accelerated),
+    /// each round a fixed-bound solve warm-started from the last; bounds never move inside the
+    /// pivot loop (a prototype that did so diverged). Done when every bound is within its row's
+    /// x-tolerance of mu |x_normal|, so the answer solves the MLCP with bounds from its own normals.
+    bool solve_consistent(std::vector<RowState>& states, std::vector<double>& x) {
+        if (!solve_frozen(states, x)) return false;
+        if (friction_rows_.empty()) return true;
+        const double d = o_.friction_damping > 0 && o_.friction_damping <= 1 ? o_.friction_damping : 1.0;
+        FrictionBoundUpdate update(d);
+        for (;;) {
+            const std::vector<double> target = friction_targets(x);
+            if (friction_consistent(target, x)) return true;
+            if (friction_rounds_ >= o_.max_friction_rounds) {
+                friction_inconsistent_ = true;
+                return true;
+            }
+            set_friction_bounds(update.next(current_friction_bounds(), target));
+            ++friction_rounds_;
+            if (!solve_fixed(states, x)) return false;
+        }
+    }
+
+    std::vector<double> current_friction_bounds() const {
+        std::vector<double> bound(friction_rows_.size());
+        for (std::size_t k = 0; k < bound.size(); ++k) bound[k] = lcp_.hi[friction_rows_[k]];
+        return bound;
+    }
+
+    /// mu_k |x_normal(k)|, 0 when the normal is 0 (ODE's rule, keeps mu = inf defined).
+    std::vector<double> friction_targets(const std::vector<double>& x) const {
+        std::vector<double> target(friction_rows_.size());
+        for (std::size_t k = 0; k < target.size(); ++k) {
+            const double normal = x[normal_of_[k]];
+            target[k] = normal == 0 ? 0.0 : std::abs(mu_[k] * normal);
+        }
+        return target;
+    }
+
+    void set_friction_bounds(const std::vector<double>& bound) {
+        for (std::size_t k = 0; k < bound.size(); ++k) {
+            lcp_.hi[friction_rows_[k]] = bound[k];
+            lcp_.lo[friction_rows_[k]] = -bound[k];
+        }
+    }
+
+    /// Every friction bound within the row's x-tolerance tol (|A||x| + |b|)_i / A_ii of its target.
+    bool friction_consistent(const std::vector<double>& target, const std::vector<double>& x) const {
+        std::vector<double> scale;
+        Ap_.abs_multiply(x, lcp_.shift, scale);
+        for (std::size_t k = 0; k < target.size(); ++k) {
+            const int i = friction_rows_[k];
+            const double x_tol = o_.tolerance * (scale[i] + std::abs(lcp_.b[i])) / (Ap_.diag(i) + lcp_.shift);
+            if (std::abs(target[k] - lcp_.hi[i]) > x_tol) return false;
+        }
+        return true;
+    }
+
+    // ---- one fixed-bound solve: continuation, then regularize on breakdown ---------------
+    /// False only when even the largest regularization breaks down (NotSpd).
+    bool solve_fixed(std::vector<RowState>& states, std::vector<double>& x) {
+        const std::vector<RowState> start = states;
+        if (!continuation_done_) run_continuation(states, x);
+        for (;;) {
+            if (prepare(shift_)) {
+                const LoopOutcome outcome = pivot_fixed_bounds(lcp_, *solver_, settings_, states, x, counters_);
+                if (outcome == LoopOutcome::MaxIterations) budget_exhausted_ = true;
+                if (outcome != LoopOutcome::Breakdown) return true;
+            }
+            if (!raise_shift()) return false;
+            states = start;
+        }
+    }
+
+    /// Solves with A + delta_k I, delta_k falling geometrically, each stage warm-started from the
+    /// last one's index set (NOTES: this is what made cold BPP converge at CFM 1e-10). Only the
+    /// first fixed-bound solve of a call runs it; later ones start warm anyway.
+    void run_continuation(std::vector<RowState>& states, std::vector<double>& x) {
+        continuation_done_ = true;
+        const int stages = o_.continuation_stages;
+        for (int k = 0; k < stages; ++k) {
+            const double delta = kContinuationStart * max_diag_ * std::pow(kContinuationSpan, double(k) / stages);
+            if (delta <= shift_ || !prepare(delta)) break;
+            std::vector<RowState> trial = states;
+            if (pivot_fixed_bounds(lcp_, *solver_, settings_, trial, x, counters_) == LoopOutcome::Breakdown) break;
+            states = trial;
+        }
+    }
+
+    bool prepare(double shift) {
+        lcp_.shift = shift;
+        if (prepared_ && prepared_shift_ == shift) return true;
+        prepared_ = solver_->prepare(shift);
+        prepared_shift_ = shift;
+        return prepared_;
+    }
+
+    bool raise_shift() {
+        const double next = shift_ == 0 ? kFirstShift * max_diag_ : shift_ * kShiftGrowth;
+        if (next > kLastShift * max_diag_ * (1 + 1e-9)) return false;
+        shift_ = next;
+        return true;
+    }
+
+    // ---- results, original space ---------------------------------------------------------
+    Result finish(bool ok, const std::vector<RowState>& states, const std::vector<double>& x, std::vector<double>& x_out) {
+        Result r;
+        r.pivots = counters_.pivots;
+        r.murty_pivots = counters_.murty_pivots;
+        r.downdate_steps = counters_.downdate_steps;
+        r.refactor_steps = counters_.refactor_steps;
+        r.accuracy_refactors = counters_.accuracy_refactors;
+        r.friction_rounds = friction_rounds_;
+        r.tight_per_step = counters_.tight_per_step;
+        r.factor_error = std::numeric_limits<double>::quiet_NaN();
+        x_out.assign(static_cast<std::size_t>(p_.n), 0.0);
+        if (!ok) {
+            r.status = Status::NotSpd;
+            std::ostringstream m;
+            m << "Cholesky breaks down even on A + " << kLastShift << " * max diag * I: A is not positive definite";
+            r.message = m.str();
+            r.regularization = shift_;
+            return r;
+        }
+        r.states.resize(static_cast<std::size_t>(p_.n));
+        for (int i = 0; i < p_.n; ++i) {
+            x_out[perm_[i]] = x[i];
+            r.states[perm_[i]] = states[i];
+            r.tight += states[i] != RowState::Free;
+        }
+        r.regularization = shift_;
+        if (shift_ > 0) r.fallback = "regularized";
+        r.status = overall_status();
+        r.message = status_message();
+        if (o_.compute_factor_error) r.factor_error = solver_->factor_error(tight_set(states));
+        return r;
+    }
+
+    Status overall_status() const {
+        if (budget_exhausted_) return Status::MaxIterations;
+        if (friction_inconsistent_) return Status::FrictionNotConsistent;
+        if (shift_ > 0) return Status::FallbackUsed;
+        return Status::Converged;
+    }
+
+    std::string status_message() const {
+        std::ostringstream m;
+        if (budget_exhausted_)
+            m << "pivot budget of " << settings_.max_pivots << " steps ran out; x is the least infeasible iterate. ";
+        if (friction_inconsistent_)
+            m << "friction bounds still moving after " << friction_rounds_ << " rounds. ";
+        if (shift_ > 0) m << "Cholesky broke down; solved with A + " << shift_ << " I. ";
+        std::string s = m.str();
+        if (!s.empty()) s.pop_back();
+        return s;
+    }
+
+    static std::vector<char> tight_set(const std::vector<RowState>& states) {
+        std::vector<char> tight(states.size());
+        for (std::size_t i = 0; i < states.size(); ++i) tight[i] = states[i] != RowState::Free;
+        return tight;
+    }
+
+    const Problem& p_;
+    const SymmetricRows& A_original_;
+    const Options& o_;
+    PivotSettings settings_;
+    PivotCounters counters_;
+    std::vector<int> perm_;
+    SymmetricRows Ap_;
+    std::unique_ptr<FreeSolver> solver_;
+    BoxedLcp lcp_;
+    std::vector<int> friction_rows_, normal_of_;  // permuted indices
+    std::vector<double> mu_;
+    double max_diag_ = 0;
+    double shift_ = 0;  // regularization adopted after a breakdown (0: none)
+    bool prepared_ = false;
+    double prepared_shift_ = 0;
+    bool continuation_done_ = false;
+    bool budget_exhausted_ = false;
+    bool friction_inconsistent_ = false;
+    int friction_rounds_ = 0;
+};
+
+}  // namespace
+
+Result solve_bpp(const Problem& problem, const SymmetricRows& A, const Options& options, std::vector<double>& x) {
+    return BppDriver(problem, A, options).run(x);
+}
+
+}  // namespace ode_bpp::pivoting

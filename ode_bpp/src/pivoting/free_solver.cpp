@@ -1,0 +1,26 @@
+#include "pivoting/free_solver.h"
+
+#include <cmath>
+#include <limits>
+
+#include "pivoting/strategies.h"
+
+namespace ode_bpp::pivoting {
+
+double FreeSolver::factor_error(const std::vector<char>&) const { return std::numeric_limits<double>::quiet_NaN(); }
+
+bool pivot_breaks_down(double pivot_squared, double diagonal) {
+    return !(pivot_squared > std::numeric_limits<double>::epsilon() * diagonal);
+}
+
+std::unique_ptr<FreeSolver> make_free_solver(Method method, const SymmetricRows& Ap) {
+    switch (method) {
+        case Method::BppChol: return make_dense_refactor_solver(Ap);
+        case Method::BppDown: return make_skyline_solver(Ap, SkylineVariant::DenseDelete);
+        case Method::BppSky: return make_skyline_solver(Ap, SkylineVariant::SkylineDelete);
+        case Method::Bpp: return make_skyline_solver(Ap, SkylineVariant::CostModel);
+        default: return nullptr;
+    }
+}
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,44 @@
+// The factor strategy behind the pivoting loop: how L_FF of Eq. 6 is obtained at each step.
+// One implementation per Method (Alg. 1 dense refactoring, Alg. 2 deletion, Alg. 2 + 3 skyline,
+// and ours with the cost model); the loop itself (pivot_loop.h) is written once.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "ode_bpp/solver.h"
+#include "pivoting/symmetric_rows.h"
+
+namespace ode_bpp::pivoting {
+
+/// How solve_free obtained L_FF.
+enum class FactorOutcome {
+    Deleted,     ///< copied from L0 with the tight rows deleted (Alg. 2 lines 7-11)
+    Refactored,  ///< a (partial) Cholesky factorization of A_FF
+    Breakdown,   ///< a Cholesky pivot was not safely positive: A_FF is not numerically SPD
+};
+
+/// Everything in the permuted index space of the SymmetricRows the strategy was built on.
+class FreeSolver {
+public:
+    virtual ~FreeSolver() = default;
+    /// Factors L0 L0^T = Ap + shift I once per shift (Alg. 2 line 2). False on breakdown.
+    virtual bool prepare(double shift) = 0;
+    /// Solves (Ap + shift I)_FF x_F = rhs_F with F = { i : tight[i] == 0 } (Eq. 6).
+    /// x: n entries; in: rhs at free rows (tight entries ignored); out: x_F at free rows and 0 at
+    /// tight rows. fresh: obtain L_FF by refactoring, never by deletion (the accuracy retry).
+    virtual FactorOutcome solve_free(const std::vector<char>& tight, std::vector<double>& x, bool fresh) = 0;
+    /// Table 4: ||L_deleted - chol(A_FF)||_F at this tight set, or NaN where not meaningful.
+    virtual double factor_error(const std::vector<char>& tight) const;
+};
+
+/// True when a Cholesky pivot d = L_kk^2 of a column whose diagonal entry was a_kk is not safely
+/// positive: d <= eps * a_kk means column k is dependent on the earlier ones to machine
+/// precision (or d is NaN), and the factor would amplify rounding by 1/eps.
+bool pivot_breaks_down(double pivot_squared, double diagonal);
+
+/// The strategy of a BPP method (BppChol, BppDown, BppSky, Bpp) on Ap; null for other methods
+/// or when the method's kernels are not available.
+std::unique_ptr<FreeSolver> make_free_solver(Method method, const SymmetricRows& Ap);
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,81 @@
+#include "pivoting/ordering_choice.h"
+
+#include <algorithm>
+#include <numeric>
+
+#include "linalg/cost_model.h"
+#include "linalg/envelope.h"
+#include "linalg/skyline.h"
+#include "ordering/order_rows.h"
+#include "pivoting/step_cost.h"
+
+namespace ode_bpp::pivoting {
+
+namespace {
+
+std::vector<int> identity(int n) {
+    std::vector<int> perm(static_cast<std::size_t>(n));
+    std::iota(perm.begin(), perm.end(), 0);
+    return perm;
+}
+
+std::vector<int> order(const Problem& p, ordering::OrderingKind kind, const std::vector<char>* likely_tight) {
+    std::vector<int> perm = ordering::order_rows(p.n, p.A, p.lda, p.num_blocks, p.block_row, p.block_body, kind, likely_tight);
+    return ordering::is_permutation(perm, p.n) ? perm : identity(p.n);
+}
+
+/// Rows tight in the warm start (original space), or empty when none is.
+std::vector<char> warm_tight(const std::vector<RowState>& warm_start) {
+    std::vector<char> tight(warm_start.size(), 0);
+    bool any = false;
+    for (std::size_t i = 0; i < warm_start.size(); ++i) {
+        tight[i] = warm_start[i] != RowState::Free;
+        any = any || tight[i];
+    }
+    return any ? tight : std::vector<char>{};
+}
+
+/// The smaller envelope of Cuthill-McKee and its reverse (Sec. 3.4).
+std::vector<int> smaller_envelope(const SymmetricRows& A, std::vector<int> cm, std::vector<int> rcm) {
+    return linalg::envelope_size(A.row_profile_under(rcm)) <= linalg::envelope_size(A.row_profile_under(cm)) ? rcm : cm;
+}
+
+}  // namespace
+
+double warm_solve_price(const SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight) {
+    const linalg::SkylineShape shape = linalg::SkylineShape::from_row_profile(A.row_profile_under(perm));
+    const linalg::CostModel cost(shape);
+    std::vector<int> tight_rows;
+    for (int i = 0; i < shape.n; ++i)
+        if (tight[perm[i]]) tight_rows.push_back(i);
+    const double factor = kRefactorUnit * cost.refactor_cost(0);
+    if (tight_rows.empty()) return factor;
+    const int copy_from = shape.first_column_holding(tight_rows.front());
+    const double step = std::min(deletion_price(cost, tight_rows, copy_from), refactor_price(cost, tight_rows, copy_from));
+    return factor + kStepsPerWarmSolve * step;
+}
+
+std::vector<int> choose_ordering(Method method, const Problem& problem, const SymmetricRows& A,
+                                 const std::vector<RowState>& warm_start) {
+    using ordering::OrderingKind;
+    if (method == Method::BppSky) return order(problem, OrderingKind::CuthillMcKee, nullptr);
+    if (method != Method::Bpp) return identity(problem.n);
+    std::vector<int> best = smaller_envelope(A, order(problem, OrderingKind::CuthillMcKee, nullptr),
+                                             order(problem, OrderingKind::ReverseCuthillMcKee, nullptr));
+    const std::vector<char> tight = warm_tight(warm_start);
+    if (tight.empty()) return best;
+    // Moving likely-tight rows last makes deleting them cheap but can widen the envelope a lot
+    // (contact rows couple bodies spread along the order): keep whichever prices lower.
+    double best_price = warm_solve_price(A, best, tight);
+    for (OrderingKind kind : {OrderingKind::CuthillMcKee, OrderingKind::ReverseCuthillMcKee}) {
+        std::vector<int> candidate = order(problem, kind, &tight);
+        const double price = warm_solve_price(A, candidate, tight);
+        if (price < best_price) {
+            best_price = price;
+            best = std::move(candidate);
+        }
+    }
+    return best;
+}
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,235 @@
+#include "pivoting/pivot_loop.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ode_bpp::pivoting {
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+/// Infeasible rows of one iterate and their total violation (in units of w, for tie-breaks).
+struct Infeasibility {
+    std::vector<int> rows;            ///< ascending permuted index
+    std::vector<RowState> flip_to;    ///< the state Eq. 4 moves each of them to
+    double violation = 0;
+    int count() const { return static_cast<int>(rows.size()); }
+};
+
+class PivotLoop {
+public:
+    PivotLoop(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings, PivotCounters& counters)
+        : lcp_(lcp), solver_(solver), settings_(settings), counters_(counters), n_(lcp.n()) {}
+
+    LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
+        normalize(states);
+        int least_count = n_ + 1;        // Júdice-Pires: fewest infeasible rows seen so far
+        int block_steps_left = settings_.murty_after;
+        bool in_murty = false;
+        best_count_ = n_ + 1;
+        for (int step = 0; step < settings_.max_pivots; ++step) {
+            if (!solve_step(states, x)) return LoopOutcome::Breakdown;
+            const Infeasibility inf = classify(states, x);
+            remember_if_best(inf, states, x);
+            if (inf.count() == 0) {
+                orient_pinned_rows(states);
+                return LoopOutcome::Converged;
+            }
+            if (inf.count() < least_count) {
+                least_count = inf.count();
+                block_steps_left = settings_.murty_after;
+                in_murty = false;
+                block_pivot(inf, states);
+            } else if (block_steps_left > 0) {
+                --block_steps_left;
+                block_pivot(inf, states);
+            } else if (!in_murty) {
+                // Murty's phase starts from the least infeasible index set seen, not from
+                // wherever the unproductive block steps left it (fewer single pivots on
+                // random and chain problems; termination is unaffected: each phase is
+                // Murty's finite method and ends only below a count that never rises)
+                in_murty = true;
+                states = best_states_;
+                murty_pivot(best_inf_, states);
+            } else {
+                murty_pivot(inf, states);
+            }
+        }
+        restore_best(states, x);
+        return LoopOutcome::MaxIterations;
+    }
+
+private:
+    /// Rows that must be free are free; pinned rows (lo == hi) are tight; a tight state at an
+    /// infinite bound cannot hold and starts free, as does anything that is not a RowState.
+    void normalize(std::vector<RowState>& states) const {
+        states.resize(static_cast<std::size_t>(n_), RowState::Free);
+        for (int i = 0; i < n_; ++i) {
+            RowState& s = states[i];
+            if (s != RowState::AtLo && s != RowState::AtHi) s = RowState::Free;  // also garbage values
+            if (lcp_.always_free[i]) s = RowState::Free;
+            else if (lcp_.is_pinned(i)) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
+            else if (s == RowState::AtLo && std::isinf(lcp_.lo[i])) s = RowState::Free;
+            else if (s == RowState::AtHi && std::isinf(lcp_.hi[i])) s = RowState::Free;
+        }
+    }
+
+    /// One pivot step: x_T at its bounds (Alg. 1 lines 6-7), x_F from Eq. 6, then w (line 9).
+    bool solve_step(const std::vector<RowState>& states, std::vector<double>& x) {
+        tight_.assign(static_cast<std::size_t>(n_), 0);
+        x.assign(static_cast<std::size_t>(n_), 0.0);
+        int tight_count = 0;
+        for (int i = 0; i < n_; ++i)
+            if (states[i] != RowState::Free) {
+                tight_[i] = 1;
+                x[i] = tight_value(lcp_, i, states[i]);
+                ++tight_count;
+            }
+        lcp_.A->multiply(x, lcp_.shift, Ax_);  // A_FT x_T on the free rows (x_F = 0 here)
+        for (int i = 0; i < n_; ++i)
+            if (!tight_[i]) rhs_x_[i] = lcp_.b[i] - Ax_[i];
+        ++counters_.pivots;
+        if (settings_.record_steps) counters_.tight_per_step.push_back(tight_count);
+        FactorOutcome outcome = solve_free(x, /*fresh=*/false);
+        if (outcome == FactorOutcome::Breakdown) return false;
+        if (outcome == FactorOutcome::Deleted && free_residual() > accuracy_limit()) {
+            // MuJoCo-style loss-of-accuracy guard: a deleted factor that misses Eq. 6 by more
+            // than a fresh factor would is replaced by a refactorization for this step.
+            ++counters_.accuracy_refactors;
+            outcome = solve_free(x, /*fresh=*/true);
+            if (outcome == FactorOutcome::Breakdown) return false;
+        }
+        (outcome == FactorOutcome::Deleted ? counters_.downdate_steps : counters_.refactor_steps) += 1;
+        return true;
+    }
+
+    /// Solves for x_F with the right-hand side kept in rhs_x_, then refreshes w and the scales.
+    FactorOutcome solve_free(std::vector<double>& x, bool fresh) {
+        x_free_ = rhs_x_;  // the strategy overwrites its argument
+        const FactorOutcome outcome = solver_.solve_free(tight_, x_free_, fresh);
+        if (outcome == FactorOutcome::Breakdown) return outcome;
+        for (int i = 0; i < n_; ++i)
+            if (!tight_[i]) x[i] = x_free_[i];
+        lcp_.A->multiply(x, lcp_.shift, w_);
+        lcp_.A->abs_multiply(x, lcp_.shift, scale_);
+        for (int i = 0; i < n_; ++i) {
+            w_[i] -= lcp_.b[i];
+            scale_[i] += std::abs(lcp_.b[i]);
+        }
+        return outcome;
+    }
+
+    /// max over free rows of |w_i| / (|A||x| + |b|)_i: Eq. 6's backward error, row by row.
+    double free_residual() const {
+        double worst = 0;
+        for (int i = 0; i < n_; ++i)
+            if (!tight_[i] && w_[i] != 0) worst = std::max(worst, std::abs(w_[i]) / scale_[i]);
+        return worst;
+    }
+
+    /// A fresh Cholesky solve misses Eq. 6 by about n eps relative to |A||x| + |b|; a tenth of
+    /// the classification tolerance keeps the pivoting decisions unaffected by the factor.
+    double accuracy_limit() const { return std::max(0.1 * settings_.tolerance, 100.0 * n_ * kEps); }
+
+    /// Eq. 4 with per-row tolerances: a w-tolerance tol * (|A||x| + |b|)_i and the matching
+    /// x-tolerance divided by the diagonal (A_ii x_i is bounded by the same sum).
+    Infeasibility classify(const std::vector<RowState>& states, const std::vector<double>& x) const {
+        Infeasibility inf;
+        for (int i = 0; i < n_; ++i) {
+            if (lcp_.is_pinned(i)) continue;
+            const double diag = lcp_.A->diag(i) + lcp_.shift;
+            const double w_tol = settings_.tolerance * scale_[i];
+            const double x_tol = w_tol / diag;
+            double excess = 0;
+            RowState to = states[i];
+            switch (states[i]) {
+                case RowState::Free:
+                    if (x[i] < lcp_.lo[i] - x_tol) { excess = (lcp_.lo[i] - x[i]) * diag; to = RowState::AtLo; }
+                    else if (x[i] > lcp_.hi[i] + x_tol) { excess = (x[i] - lcp_.hi[i]) * diag; to = RowState::AtHi; }
+                    break;
+                case RowState::AtLo:
+                    if (w_[i] < -w_tol) { excess = -w_[i]; to = RowState::Free; }
+                    break;
+                case RowState::AtHi:
+                    if (w_[i] > w_tol) { excess = w_[i]; to = RowState::Free; }
+                    break;
+            }
+            if (to != states[i]) {
+                inf.rows.push_back(i);
+                inf.flip_to.push_back(to);
+                inf.violation += excess;
+            }
+        }
+        return inf;
+    }
+
+    /// Júdice-Pires block step: every infeasible row changes set at once (Eq. 4).
+    static void block_pivot(const Infeasibility& inf, std::vector<RowState>& states) {
+        for (int k = 0; k < inf.count(); ++k) states[inf.rows[k]] = inf.flip_to[k];
+    }
+
+    /// Murty's least-index rule, in reverse: only the infeasible row of largest rank in a fixed
+    /// order (BoxedLcp::murty_rank) changes set. This guarantees termination for P-matrices.
+    void murty_pivot(const Infeasibility& inf, std::vector<RowState>& states) {
+        ++counters_.murty_pivots;
+        int chosen = inf.count() - 1;
+        if (!lcp_.murty_rank.empty())
+            for (int k = 0; k < inf.count(); ++k)
+                if (lcp_.murty_rank[inf.rows[k]] > lcp_.murty_rank[inf.rows[chosen]]) chosen = k;
+        states[inf.rows[chosen]] = inf.flip_to[chosen];
+    }
+
+    void remember_if_best(const Infeasibility& inf, const std::vector<RowState>& states, const std::vector<double>& x) {
+        if (inf.count() > best_count_ || (inf.count() == best_count_ && inf.violation >= best_violation_)) return;
+        best_count_ = inf.count();
+        best_violation_ = inf.violation;
+        best_states_ = states;
+        best_inf_ = inf;
+        best_x_ = x;
+        best_w_ = w_;
+    }
+
+    /// The least infeasible iterate, projected onto [lo, hi]; a free row pushed onto a bound is
+    /// recorded at that bound so that the index set describes x.
+    void restore_best(std::vector<RowState>& states, std::vector<double>& x) {
+        states = best_states_;
+        x = best_x_;
+        w_ = best_w_;
+        for (int i = 0; i < n_; ++i) {
+            if (x[i] < lcp_.lo[i]) { x[i] = lcp_.lo[i]; states[i] = RowState::AtLo; }
+            else if (x[i] > lcp_.hi[i]) { x[i] = lcp_.hi[i]; states[i] = RowState::AtHi; }
+        }
+        orient_pinned_rows(states);
+    }
+
+    /// A pinned row is at both bounds; report it at the one its w supports (w >= 0: at lo).
+    void orient_pinned_rows(std::vector<RowState>& states) const {
+        for (int i = 0; i < n_; ++i)
+            if (lcp_.is_pinned(i)) states[i] = w_[i] >= 0 ? RowState::AtLo : RowState::AtHi;
+    }
+
+    const BoxedLcp& lcp_;
+    FreeSolver& solver_;
+    const PivotSettings& settings_;
+    PivotCounters& counters_;
+    const int n_;
+    std::vector<char> tight_;
+    std::vector<double> Ax_, w_, scale_, x_free_;
+    std::vector<double> rhs_x_ = std::vector<double>(static_cast<std::size_t>(n_), 0.0);
+    int best_count_ = 0;
+    double best_violation_ = std::numeric_limits<double>::infinity();
+    std::vector<RowState> best_states_;
+    Infeasibility best_inf_;
+    std::vector<double> best_x_, best_w_;
+};
+
+}  // namespace
+
+LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,
+                               std::vector<RowState>& states, std::vector<double>& x, PivotCounters& counters) {
+    return PivotLoop(lcp, solver, settings, counters).run(states, x);
+}
+
+}  // namespace ode_bpp::pivoting

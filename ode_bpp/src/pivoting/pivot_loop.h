@@ -1,0 +1,43 @@
+// Júdice-Pires block principal pivoting with Murty's single-pivot safeguard, for the boxed LCP
+// with fixed bounds (paper Sec. 3.1, Eq. 4-6, Alg. 1/2 outer loop), in the permuted space.
+#pragma once
+
+#include <vector>
+
+#include "ode_bpp/solver.h"
+#include "pivoting/boxed_lcp.h"
+#include "pivoting/free_solver.h"
+
+namespace ode_bpp::pivoting {
+
+struct PivotSettings {
+    int max_pivots = 60;     ///< solves of Eq. 6 allowed in this run
+    int murty_after = 10;    ///< block steps without a new minimum of infeasible rows before Murty
+    double tolerance = 1e-9; ///< relative, scaled per row (see classify in pivot_loop.cpp)
+    bool record_steps = true;
+};
+
+/// Counters accumulated over every run of the loop that a solve makes.
+struct PivotCounters {
+    int pivots = 0;
+    int murty_pivots = 0;
+    int downdate_steps = 0;
+    int refactor_steps = 0;
+    int accuracy_refactors = 0;  ///< deleted factors rejected by the free-residual check
+    std::vector<int> tight_per_step;
+};
+
+enum class LoopOutcome {
+    Converged,      ///< no row infeasible: x solves the boxed LCP to the scaled tolerance
+    MaxIterations,  ///< budget spent: x is the least infeasible iterate, projected onto the bounds
+    Breakdown,      ///< the strategy met a non-positive pivot; x and states are not meaningful
+};
+
+/// Runs the loop from the index set `states` (n entries, permuted space; rows that must be free
+/// or are pinned are corrected first) and leaves the final index set there. x: out, n entries,
+/// permuted space; always within [lo, hi] unless the outcome is Breakdown.
+/// The solver must have been prepared with lcp.shift.
+LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,
+                               std::vector<RowState>& states, std::vector<double>& x, PivotCounters& counters);
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,118 @@
+#include "pivoting/symmetric_rows.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace ode_bpp::pivoting {
+
+namespace {
+
+struct Entry {
+    int row, col;
+    double value;
+};
+
+}  // namespace
+
+std::vector<int> inverse_permutation(const std::vector<int>& perm) {
+    std::vector<int> inverse(perm.size());
+    for (std::size_t i = 0; i < perm.size(); ++i) inverse[perm[i]] = static_cast<int>(i);
+    return inverse;
+}
+
+SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) : n_(p.n) {
+    std::vector<int> to_new(static_cast<std::size_t>(n_));
+    if (perm.empty()) std::iota(to_new.begin(), to_new.end(), 0);
+    else to_new = inverse_permutation(perm);
+    diag_.assign(static_cast<std::size_t>(n_), 0.0);
+    std::vector<Entry> lower;  // one pass over the dense triangle; A is mostly zeros
+    std::vector<int> count(static_cast<std::size_t>(n_), 0);
+    for (int i = 0; i < n_; ++i) {
+        const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
+        diag_[to_new[i]] = row[i];
+        for (int j = 0; j < i; ++j)
+            if (row[j] != 0) {
+                lower.push_back({to_new[i], to_new[j], row[j]});
+                ++count[to_new[i]];
+                ++count[to_new[j]];
+            }
+    }
+    rowptr_.assign(static_cast<std::size_t>(n_) + 1, 0);
+    for (int i = 0; i < n_; ++i) rowptr_[i + 1] = rowptr_[i] + count[i];
+    col_.resize(static_cast<std::size_t>(rowptr_[n_]));
+    val_.resize(col_.size());
+    std::vector<int> next(rowptr_.begin(), rowptr_.end() - 1);
+    for (const Entry& e : lower) {
+        col_[next[e.row]] = e.col;
+        val_[next[e.row]++] = e.value;
+        col_[next[e.col]] = e.row;
+        val_[next[e.col]++] = e.value;
+    }
+}
+
+SymmetricRows SymmetricRows::permuted(const std::vector<int>& perm) const {
+    const std::vector<int> to_new = inverse_permutation(perm);
+    SymmetricRows out;
+    out.n_ = n_;
+    out.diag_.resize(diag_.size());
+    out.rowptr_.assign(rowptr_.size(), 0);
+    for (int i = 0; i < n_; ++i) {
+        out.diag_[i] = diag_[perm[i]];
+        out.rowptr_[i + 1] = out.rowptr_[i] + (row_end(perm[i]) - row_begin(perm[i]));
+    }
+    out.col_.resize(col_.size());
+    out.val_.resize(val_.size());
+    for (int i = 0; i < n_; ++i) {
+        int dst = out.rowptr_[i];
+        for (int k = row_begin(perm[i]); k < row_end(perm[i]); ++k, ++dst) {
+            out.col_[dst] = to_new[col_[k]];
+            out.val_[dst] = val_[k];
+        }
+    }
+    return out;
+}
+
+double SymmetricRows::max_diag() const {
+    return diag_.empty() ? 0.0 : *std::max_element(diag_.begin(), diag_.end());
+}
+
+void SymmetricRows::multiply(const std::vector<double>& x, double shift, std::vector<double>& y) const {
+    y.resize(static_cast<std::size_t>(n_));
+    for (int i = 0; i < n_; ++i) {
+        double sum = (diag_[i] + shift) * x[i];
+        for (int k = rowptr_[i]; k < rowptr_[i + 1]; ++k) sum += val_[k] * x[col_[k]];
+        y[i] = sum;
+    }
+}
+
+void SymmetricRows::abs_multiply(const std::vector<double>& x, double shift, std::vector<double>& y) const {
+    y.resize(static_cast<std::size_t>(n_));
+    for (int i = 0; i < n_; ++i) {
+        double sum = std::abs((diag_[i] + shift) * x[i]);
+        for (int k = rowptr_[i]; k < rowptr_[i + 1]; ++k) sum += std::abs(val_[k] * x[col_[k]]);
+        y[i] = sum;
+    }
+}
+
+std::vector<int> SymmetricRows::row_profile() const {
+    std::vector<int> first(static_cast<std::size_t>(n_));
+    for (int i = 0; i < n_; ++i) {
+        first[i] = i;
+        for (int k = rowptr_[i]; k < rowptr_[i + 1]; ++k) first[i] = std::min(first[i], col_[k]);
+    }
+    return first;
+}
+
+std::vector<int> SymmetricRows::row_profile_under(const std::vector<int>& perm) const {
+    const std::vector<int> to_new = inverse_permutation(perm);
+    std::vector<int> first(static_cast<std::size_t>(n_));
+    for (int i = 0; i < n_; ++i) {
+        int f = i;
+        for (int k = row_begin(perm[i]); k < row_end(perm[i]); ++k) f = std::min(f, to_new[col_[k]]);
+        first[i] = f;
+    }
+    return first;
+}
+
+}  // namespace ode_bpp::pivoting

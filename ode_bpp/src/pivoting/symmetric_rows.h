@@ -1,0 +1,52 @@
+// A symmetric matrix as compressed rows holding both triangles, in a permuted index space.
+//
+// The pivoting loop needs A only through products (w = A x - b, Eq. 5, and the right-hand side
+// b_F - A_FT x_T of Eq. 6) and through the entries its factor strategies load. Keeping A's
+// non-zeros once, permuted, makes every product O(nnz) instead of O(n^2) on ODE's dense,
+// mostly-zero A, and keeps the Bpp variant's memory at O(nnz + envelope).
+#pragma once
+
+#include <vector>
+
+#include "ode_bpp/solver.h"
+
+namespace ode_bpp::pivoting {
+
+class SymmetricRows {
+public:
+    SymmetricRows() = default;
+    /// Ap(i,j) = A(perm[i], perm[j]) read from the lower triangle of problem.A (original space).
+    /// perm: perm[new] = old, n entries, or empty for the identity. Exact zeros are not stored.
+    SymmetricRows(const Problem& problem, const std::vector<int>& perm);
+    /// The same matrix under a further permutation: result(i,j) = this(perm[i], perm[j]).
+    SymmetricRows permuted(const std::vector<int>& perm) const;
+
+    int n() const { return n_; }
+    double diag(int i) const { return diag_[i]; }
+    double max_diag() const;
+    /// Off-diagonal entries of row i: positions rowptr(i) .. rowptr(i+1)-1 of col()/val().
+    int row_begin(int i) const { return rowptr_[i]; }
+    int row_end(int i) const { return rowptr_[i + 1]; }
+    int col(int k) const { return col_[k]; }
+    double val(int k) const { return val_[k]; }
+
+    /// y = (Ap + shift I) x; x, y: n entries, permuted space.
+    void multiply(const std::vector<double>& x, double shift, std::vector<double>& y) const;
+    /// y = |Ap + shift I| |x| (the per-row scale of the tolerance), n entries.
+    void abs_multiply(const std::vector<double>& x, double shift, std::vector<double>& y) const;
+    /// Row profile of the lower triangle: first[i] = min({i} U {j < i : Ap(i,j) != 0}).
+    std::vector<int> row_profile() const;
+    /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.
+    std::vector<int> row_profile_under(const std::vector<int>& perm) const;
+
+private:
+    int n_ = 0;
+    std::vector<double> diag_;
+    std::vector<int> rowptr_, col_;
+    std::vector<double> val_;
+};
+
+/// inverse[perm[i]] = i.
+std::vector<int> inverse_permutation(const std::vector<int>& perm);
+
+}  // namespace ode_bpp::pivoting

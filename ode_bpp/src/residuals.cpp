@@ -1,0 +1,85 @@
+#include "residuals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ode_bpp {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double clamp_to(double v, std::pair<double, double> bounds) {
+    return std::min(std::max(v, bounds.first), bounds.second);
+}
+
+double inf_norm(ConstStrided v, int n) {
+    double m = 0;
+    for (int i = 0; i < n; ++i) m = std::max(m, std::abs(v[i]));
+    return m;
+}
+
+bool is_free(const Problem& p, ConstStrided x, const std::vector<RowState>* states, int i) {
+    if (states != nullptr) return (*states)[i] == RowState::Free;
+    const auto [lo, hi] = effective_bounds(p, x, i);
+    return lo < x[i] && x[i] < hi;
+}
+
+}  // namespace
+
+std::pair<double, double> effective_bounds(const Problem& p, ConstStrided x, int i) {
+    if (i < p.nub) return {-kInf, kInf};
+    if (p.findex != nullptr && p.findex[i] >= 0) {
+        const double normal = x[p.findex[i]];
+        const double bound = normal == 0 ? 0.0 : std::abs(p.hi[i] * normal);
+        return {-bound, bound};
+    }
+    return {p.lo[i], p.hi[i]};
+}
+
+void residual_vectors(const Problem& p, const pivoting::SymmetricRows& A, ConstStrided x, std::vector<double>& w,
+                      std::vector<double>& scale) {
+    w.assign(static_cast<std::size_t>(p.n), 0.0);
+    scale.assign(static_cast<std::size_t>(p.n), 0.0);
+    for (int i = 0; i < p.n; ++i) {
+        double wi = A.diag(i) * x[i] - p.b[i];
+        double si = std::abs(A.diag(i) * x[i]) + std::abs(p.b[i]);
+        for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+            const double term = A.val(k) * x[A.col(k)];
+            wi += term;
+            si += std::abs(term);
+        }
+        w[i] = wi;
+        scale[i] = si;
+    }
+}
+
+void residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
+    residual_vectors(p, pivoting::SymmetricRows(p, {}), x, w, scale);
+}
+
+Residuals compute_residuals(const Problem& p, ConstStrided x, const std::vector<RowState>* states) {
+    return compute_residuals(p, pivoting::SymmetricRows(p, {}), x, states);
+}
+
+Residuals compute_residuals(const Problem& p, const pivoting::SymmetricRows& A, ConstStrided x,
+                            const std::vector<RowState>* states) {
+    std::vector<double> w, scale;
+    residual_vectors(p, A, x, w, scale);
+    Residuals r;
+    for (int i = 0; i < p.n; ++i) {
+        const auto bounds = effective_bounds(p, x, i);
+        r.natural = std::max(r.natural, std::abs(x[i] - clamp_to(x[i] - w[i], bounds)));
+        const double diag = A.diag(i);
+        const double scaled = std::abs(x[i] - clamp_to(x[i] - w[i] / diag, bounds));
+        if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled * diag / scale[i]);
+        if (is_free(p, x, states, i)) r.free = std::max(r.free, std::abs(w[i]));
+        if (p.findex != nullptr && p.findex[i] >= 0)
+            r.friction = std::max(r.friction, std::abs(x[i]) - bounds.second);
+    }
+    r.relative_natural = r.natural / std::max(1.0, inf_norm(p.b, p.n));
+    return r;
+}
+
+}  // namespace ode_bpp

@@ -1,0 +1,219 @@
+// solve(): validation, dispatch on Options::method, the fallback chain, and the common Result
+// fields (residuals, states) computed the same way for every method.
+//
+// Fallback chain, in order:
+//  1. Invalid input (validate(), a warm start of the wrong size, a non-finite or negative
+//     tolerance): Status::InvalidInput, x = 0 (when x is writable), message names the row.
+//  2. BPP methods: a Cholesky pivot that is not safely positive (pivot_breaks_down) makes the
+//     fixed-bound solve restart with A + delta I, delta = 1e-12 * max_i A_ii, growing x100 up to
+//     1e-6 * max_i A_ii; the answer then has fallback "regularized", Result::regularization = delta
+//     and status FallbackUsed (or MaxIterations / FrictionNotConsistent if those also happened).
+//  3. Breakdown even at 1e-6: Status::NotSpd. With Options::dantzig_fallback the problem goes to
+//     ODE's Dantzig: status FallbackUsed, fallback "dantzig" (or "regularized+dantzig" when step 2
+//     had already been taken). Without it, or if Dantzig fails too, x = 0 and NotSpd.
+//  4. Any method whose answer holds a NaN or an infinity: treated as step 3 (Dantzig if allowed
+//     and not already used, else x = 0 and NotSpd). So x is never written non-finite.
+//  Budget exhaustion (MaxIterations) and inconsistent friction (FrictionNotConsistent) are not
+//  failures: x is the best finite iterate, within its bounds, and is returned as is.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "baselines/dantzig.h"
+#include "baselines/pgs.h"
+#include "ode_bpp/residuals.h"
+#include "ode_bpp/solver.h"
+#include "ode_bpp/validation.h"
+#include "pivoting/bpp_driver.h"
+#include "pivoting/symmetric_rows.h"
+#include "residuals.h"
+
+namespace ode_bpp {
+
+namespace {
+
+struct MethodName {
+    Method method;
+    const char* name;
+};
+constexpr MethodName kMethods[] = {
+    {Method::BppChol, "bpp-chol"}, {Method::BppDown, "bpp-down"}, {Method::BppSky, "bpp-sky"},
+    {Method::Bpp, "bpp"},          {Method::Dantzig, "dantzig"},  {Method::Pgs, "pgs"},
+};
+
+bool is_bpp(Method m) { return m == Method::BppChol || m == Method::BppDown || m == Method::BppSky || m == Method::Bpp; }
+
+bool all_finite(const std::vector<double>& x) {
+    return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+}
+
+/// The index set an answer x describes: a row at its effective bound is tight (rows pinned at
+/// lo = hi count as at lo).
+std::vector<RowState> states_of(const Problem& p, const std::vector<double>& x) {
+    std::vector<RowState> states(static_cast<std::size_t>(p.n), RowState::Free);
+    const ConstStrided xs{x.data(), 1};
+    for (int i = 0; i < p.n; ++i) {
+        const auto [lo, hi] = effective_bounds(p, xs, i);
+        if (x[i] <= lo) states[i] = RowState::AtLo;
+        else if (x[i] >= hi) states[i] = RowState::AtHi;
+    }
+    return states;
+}
+
+int count_tight(const std::vector<RowState>& states) {
+    return static_cast<int>(std::count_if(states.begin(), states.end(), [](RowState s) { return s != RowState::Free; }));
+}
+
+Result run_dantzig(const Problem& p, std::vector<double>& x) {
+    Result r;
+    if (!baselines::solve_dantzig(p, x)) {
+        r.status = Status::NotSpd;
+        r.message = "ODE's Dantzig refused the problem (no memory)";
+        return r;
+    }
+    r.status = Status::Converged;
+    r.states = states_of(p, x);
+    r.tight = count_tight(r.states);
+    return r;
+}
+
+Result run_pgs(const Problem& p, const pivoting::SymmetricRows& A, const Options& o, std::vector<double>& x) {
+    Result r;
+    baselines::solve_pgs(p, A, std::max(0, o.pgs_iterations), x);
+    r.pivots = std::max(0, o.pgs_iterations);  // sweeps: PGS has no pivot steps
+    r.states = states_of(p, x);
+    r.tight = count_tight(r.states);
+    const bool certified = all_finite(x) && compute_residuals(p, A, ConstStrided{x.data(), 1}, nullptr).scaled_natural <= o.tolerance;
+    r.status = certified ? Status::Converged : Status::MaxIterations;
+    if (!certified) r.message = "PGS sweeps ended above the tolerance";
+    return r;
+}
+
+Result dispatch(const Problem& p, const pivoting::SymmetricRows& A, const Options& o, std::vector<double>& x) {
+    if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, x);
+    if (o.method == Method::Dantzig) return run_dantzig(p, x);
+    return run_pgs(p, A, o, x);
+}
+
+/// Steps 3-4 of the chain above.
+void apply_fallbacks(const Problem& p, const Options& o, Result& r, std::vector<double>& x) {
+    const bool failed = r.status == Status::NotSpd || !all_finite(x);
+    if (!failed) return;
+    std::string reason = r.status == Status::NotSpd ? r.message : "the answer was not finite";
+    if (o.dantzig_fallback && o.method != Method::Dantzig) {
+        std::vector<double> xd;
+        if (baselines::solve_dantzig(p, xd) && all_finite(xd)) {
+            x = std::move(xd);
+            r.status = Status::FallbackUsed;
+            r.fallback = r.fallback.empty() ? "dantzig" : r.fallback + "+dantzig";
+            r.message = reason + "; answered by ODE's Dantzig";
+            r.states = states_of(p, x);
+            r.tight = count_tight(r.states);
+            return;
+        }
+        reason += "; ODE's Dantzig failed too";
+    }
+    x.assign(static_cast<std::size_t>(p.n), 0.0);
+    r.status = Status::NotSpd;
+    r.message = reason + "; x set to zero";
+    r.states.assign(static_cast<std::size_t>(p.n), RowState::Free);
+    r.tight = 0;
+}
+
+void fill_residuals(const Problem& p, const pivoting::SymmetricRows& A, Result& r, const std::vector<double>& x) {
+    const Residuals res = compute_residuals(p, A, ConstStrided{x.data(), 1}, r.states.empty() ? nullptr : &r.states);
+    r.natural_residual = res.natural;
+    r.relative_natural_residual = res.relative_natural;
+    r.scaled_natural_residual = res.scaled_natural;
+    r.free_residual = res.free;
+    r.friction_error = res.friction;
+}
+
+Result invalid_input(const Problem& p, Strided x, std::string message) {
+    Result r;
+    r.status = Status::InvalidInput;
+    r.message = std::move(message);
+    r.factor_error = std::numeric_limits<double>::quiet_NaN();
+    if (x.data != nullptr && x.stride >= 1)
+        for (int i = 0; i < p.n; ++i) x[i] = 0.0;
+    return r;
+}
+
+}  // namespace
+
+const char* to_string(Method m) {
+    for (const MethodName& entry : kMethods)
+        if (entry.method == m) return entry.name;
+    return "unknown";
+}
+
+std::optional<Method> method_from_string(std::string_view name) {
+    for (const MethodName& entry : kMethods)
+        if (name == entry.name) return entry.method;
+    return std::nullopt;
+}
+
+std::vector<std::string> method_names() {
+    std::vector<std::string> names;
+    for (const MethodName& entry : kMethods) names.emplace_back(entry.name);
+    return names;
+}
+
+const char* to_string(FrictionMode f) { return f == FrictionMode::Frozen ? "frozen" : "consistent"; }
+
+std::optional<FrictionMode> friction_from_string(std::string_view name) {
+    if (name == "frozen") return FrictionMode::Frozen;
+    if (name == "consistent") return FrictionMode::Consistent;
+    return std::nullopt;
+}
+
+const char* to_string(Status s) {
+    switch (s) {
+        case Status::Converged: return "converged";
+        case Status::MaxIterations: return "max-iterations";
+        case Status::FallbackUsed: return "fallback-used";
+        case Status::NotSpd: return "not-spd";
+        case Status::InvalidInput: return "invalid-input";
+        case Status::FrictionNotConsistent: return "friction-not-consistent";
+    }
+    return "unknown";
+}
+
+bool is_usable(Status s) {
+    return s == Status::Converged || s == Status::FallbackUsed || s == Status::MaxIterations ||
+           s == Status::FrictionNotConsistent;
+}
+
+Result solve(const Problem& problem, const Options& options, Strided x) {
+    if (x.data == nullptr || x.stride < 1) {
+        Result r = invalid_input(problem, x, "x is null or has a stride < 1");
+        r.method = options.method;
+        r.friction = options.friction;
+        return r;
+    }
+    ValidationResult v = validate(problem);
+    if (v.valid) v = validate_warm_start(problem, options.warm_start);
+    if (v.valid && !(options.tolerance >= 0 && std::isfinite(options.tolerance)))
+        v = {false, "tolerance must be finite and >= 0"};
+    if (!v.valid) {
+        Result r = invalid_input(problem, problem.n > 0 ? x : Strided{}, v.message);
+        r.method = options.method;
+        r.friction = options.friction;
+        return r;
+    }
+    const pivoting::SymmetricRows A(problem, {});  // the one O(n^2) pass after validation
+    std::vector<double> answer;
+    Result r = dispatch(problem, A, options, answer);
+    r.method = options.method;
+    r.friction = options.friction;
+    apply_fallbacks(problem, options, r, answer);
+    fill_residuals(problem, A, r, answer);
+    if (!is_bpp(options.method)) r.factor_error = std::numeric_limits<double>::quiet_NaN();
+    if (r.status != Status::Converged && r.message.empty()) r.message = to_string(r.status);
+    for (int i = 0; i < problem.n; ++i) x[i] = answer[i];
+    return r;
+}
+
+Result solve(const Problem& problem, const Options& options, double* x) { return solve(problem, options, Strided{x, 1}); }
+
+}  // namespace ode_bpp

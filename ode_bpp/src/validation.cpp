@@ -1,0 +1,108 @@
+#include "ode_bpp/validation.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace ode_bpp {
+
+namespace {
+
+ValidationResult invalid(const std::string& message) { return {false, message}; }
+
+ValidationResult invalid_row(int row, const std::string& reason) {
+    std::ostringstream out;
+    out << "row " << row << ": " << reason;
+    return invalid(out.str());
+}
+
+std::string describe(const char* name, double value) {
+    std::ostringstream out;
+    out << name << " (" << value << ")";
+    return out.str();
+}
+
+ValidationResult check_sizes(const Problem& p) {
+    if (p.n <= 0) return invalid("n = " + std::to_string(p.n) + ": the problem must have at least one row");
+    if (p.A == nullptr) return invalid("A is null");
+    if (p.lda < p.n) return invalid("lda = " + std::to_string(p.lda) + " < n = " + std::to_string(p.n));
+    if (p.b.data == nullptr || p.lo.data == nullptr || p.hi.data == nullptr) return invalid("b, lo or hi is null");
+    if (p.b.stride < 1 || p.lo.stride < 1 || p.hi.stride < 1) return invalid("b, lo or hi has a stride < 1");
+    if (p.nub < 0 || p.nub > p.n)
+        return invalid("nub = " + std::to_string(p.nub) + " outside [0, n = " + std::to_string(p.n) + "]");
+    return {};
+}
+
+ValidationResult check_matrix(const Problem& p) {
+    for (int i = 0; i < p.n; ++i) {
+        const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
+        for (int j = 0; j <= i; ++j)
+            if (!std::isfinite(row[j]))
+                return invalid_row(i, "A(" + std::to_string(i) + "," + std::to_string(j) + ") is not finite");
+        if (!(row[i] > 0)) return invalid_row(i, describe("diagonal A(i,i)", row[i]) + " is not positive");
+    }
+    return {};
+}
+
+bool is_friction_row(const Problem& p, int i) { return p.findex != nullptr && p.findex[i] >= 0; }
+
+ValidationResult check_bounds(const Problem& p) {
+    for (int i = 0; i < p.n; ++i) {
+        if (!std::isfinite(p.b[i])) return invalid_row(i, describe("b", p.b[i]) + " is not finite");
+        const double lo = p.lo[i], hi = p.hi[i];
+        if (std::isnan(lo) || std::isnan(hi)) return invalid_row(i, "lo or hi is NaN");
+        if (is_friction_row(p, i)) continue;  // its bounds come from mu and the normal
+        if (i < p.nub) continue;              // unbounded whatever lo/hi say
+        if (lo > hi) return invalid_row(i, describe("lo", lo) + " > " + describe("hi", hi));
+        if (lo > 0) return invalid_row(i, describe("lo", lo) + " > 0 (ODE requires lo <= 0 <= hi)");
+        if (hi < 0) return invalid_row(i, describe("hi", hi) + " < 0 (ODE requires lo <= 0 <= hi)");
+    }
+    return {};
+}
+
+ValidationResult check_findex(const Problem& p) {
+    if (p.findex == nullptr) return {};
+    for (int i = 0; i < p.n; ++i) {
+        const int f = p.findex[i];
+        if (f < -1 || f >= p.n)
+            return invalid_row(i, "findex (" + std::to_string(f) + ") outside [-1, n)");
+        if (f < 0) continue;
+        if (f == i) return invalid_row(i, "findex points at the row itself");
+        if (p.findex[f] >= 0)
+            return invalid_row(i, "findex points at row " + std::to_string(f) + ", itself a friction row");
+        if (i < p.nub) return invalid_row(i, "friction row inside the first nub rows");
+        if (!(p.hi[i] >= 0)) return invalid_row(i, describe("friction coefficient mu = hi", p.hi[i]) + " is not >= 0");
+    }
+    return {};
+}
+
+ValidationResult check_blocks(const Problem& p) {
+    if (p.num_blocks < 0) return invalid("num_blocks = " + std::to_string(p.num_blocks) + " < 0");
+    if (p.num_blocks == 0) return {};
+    if (p.block_row == nullptr || p.block_body == nullptr) return invalid("num_blocks > 0 but block_row or block_body is null");
+    if (p.block_row[0] != 0 || p.block_row[p.num_blocks] != p.n)
+        return invalid("block_row must run from 0 to n");
+    for (int k = 0; k < p.num_blocks; ++k) {
+        if (p.block_row[k + 1] < p.block_row[k])
+            return invalid("block_row decreases at block " + std::to_string(k));
+        if (p.block_body[2 * k] < -1 || p.block_body[2 * k + 1] < -1)
+            return invalid("block " + std::to_string(k) + " has a body index < -1");
+    }
+    return {};
+}
+
+}  // namespace
+
+ValidationResult validate(const Problem& problem) {
+    for (auto check : {check_sizes, check_findex, check_bounds, check_matrix, check_blocks}) {
+        ValidationResult r = check(problem);
+        if (!r.valid) return r;
+    }
+    return {};
+}
+
+ValidationResult validate_warm_start(const Problem& problem, const std::vector<RowState>& warm_start) {
+    if (warm_start.empty() || static_cast<int>(warm_start.size()) == problem.n) return {};
+    return invalid("warm start has " + std::to_string(warm_start.size()) + " entries, n = " + std::to_string(problem.n));
+}
+
+}  // namespace ode_bpp

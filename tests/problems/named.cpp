@@ -1,0 +1,56 @@
+#include "problems/named.h"
+
+#include <limits>
+
+namespace ode_bpp::problems {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+OwnedProblem from_rows(std::string name, std::initializer_list<std::initializer_list<double>> rows) {
+    OwnedProblem p = OwnedProblem::zeros(std::move(name), static_cast<int>(rows.size()));
+    int i = 0;
+    for (const auto& row : rows) {
+        int j = 0;
+        for (double v : row) p.a(i, j++) = v;
+        ++i;
+    }
+    return p;
+}
+
+}  // namespace
+
+OwnedProblem dantzig_friction_3x3() {
+    OwnedProblem p = from_rows("dantzig_friction_3x3", {{2, .3, .1}, {.3, 1.5, .2}, {.1, .2, 1.8}});
+    p.b = {1, .9, -.2};
+    p.lo = {0, -0.5, -kInf};
+    p.hi = {kInf, 0.5, kInf};
+    p.findex = {-1, 0, -1};
+    return p;
+}
+
+OwnedProblem duplicated_rows() {
+    // two identical contact normals on one body plus a friction-free tangent: J has equal rows
+    OwnedProblem p = from_rows("duplicated_rows", {{1, 1, .2}, {1, 1, .2}, {.2, .2, 1}});
+    p.b = {1, 1, .3};
+    p.lo = {0, 0, -kInf};
+    p.hi = {kInf, kInf, kInf};
+    return p;
+}
+
+}  // namespace ode_bpp::problems
+
+namespace ode_bpp::problems {
+
+OwnedProblem block_pivoting_cycle() {
+    // Found by a seeded search over SPD boxed problems (B B^T + I/2, entries on a grid of 1/4):
+    // from all-free, pure block steps revisit the same index sets forever (27 sets, 100 steps).
+    OwnedProblem p = from_rows("block_pivoting_cycle", {{4.75, 5, -5.5}, {5, 7, -6.75}, {-5.5, -6.75, 7.75}});
+    p.b = {0, 2, 2};
+    p.lo = {-0.75, -3.25, -1.5};
+    p.hi = {0.75, 0.25, 0.5};
+    return p;
+}
+
+}  // namespace ode_bpp::problems

@@ -1,0 +1,194 @@
+// The Júdice-Pires loop (pivoting/pivot_loop.h) through solve(), against exhaustive enumeration
+// of all 3^n index sets (problems/oracle.h), for every BPP strategy.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "ode_bpp/residuals.h"
+#include "ode_bpp/solver.h"
+#include "pivoting/pivot_loop.h"
+#include "pivoting/strategies.h"
+#include "problems/generators.h"
+#include "problems/named.h"
+#include "problems/oracle.h"
+
+namespace ode_bpp {
+namespace {
+
+const Method kBppMethods[] = {Method::BppChol, Method::BppDown, Method::BppSky, Method::Bpp};
+
+double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
+    double d = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+    return d;
+}
+
+double inf_norm(const std::vector<double>& a) {
+    double m = 0;
+    for (double v : a) m = std::max(m, std::abs(v));
+    return m;
+}
+
+Result run(const problems::OwnedProblem& p, Method m, std::vector<double>& x, Options o = {}) {
+    o.method = m;
+    x.assign(p.n, 0.0);
+    return solve(p, o, x.data());
+}
+
+class PivotingEnumeration : public ::testing::TestWithParam<Method> {};
+
+TEST_P(PivotingEnumeration, MatchesAllIndexSetsWithoutFriction) {
+    int checked = 0;
+    for (int n = 2; n <= 9; ++n)
+        for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+            auto p = problems::random_boxed_mlcp(n, static_cast<int>(seed % 3 == 0), 0, 1e3, 100 * n + seed);
+            p.findex.clear();
+            const auto expected = problems::enumerate_boxed_lcp(p, p.lo, p.hi);
+            ASSERT_TRUE(expected.has_value()) << "n " << n << " seed " << seed;
+            std::vector<double> x;
+            const Result r = run(p, GetParam(), x);
+            ASSERT_EQ(r.status, Status::Converged) << r.message << " n " << n << " seed " << seed;
+            // cond 1e3: x is determined to ~cond * tol relative
+            EXPECT_LT(max_abs_diff(x, *expected), 1e-6 * (1 + inf_norm(*expected))) << "n " << n << " seed " << seed;
+            ++checked;
+        }
+    EXPECT_EQ(checked, 48);
+}
+
+TEST_P(PivotingEnumeration, FrozenFrictionMatchesTwoStageEnumeration) {
+    for (int contacts = 1; contacts <= 3; ++contacts)
+        for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+            const int n = 3 * contacts + 1 + static_cast<int>(seed % 2);
+            const auto p = problems::random_boxed_mlcp(n, 1, contacts, 1e2, 7 * seed + contacts);
+            const auto expected = problems::enumerate_frozen_friction(p);
+            ASSERT_TRUE(expected.has_value());
+            std::vector<double> x;
+            const Result r = run(p, GetParam(), x);
+            ASSERT_EQ(r.status, Status::Converged) << r.message;
+            EXPECT_LT(max_abs_diff(x, *expected), 1e-6 * (1 + inf_norm(*expected)))
+                << "contacts " << contacts << " seed " << seed;
+        }
+}
+
+TEST_P(PivotingEnumeration, WarmStartFromTheAnswerNeedsOnePivot) {
+    const auto p = problems::random_boxed_mlcp(9, 2, 0, 1e3, 77);
+    std::vector<double> x;
+    const Result first = run(p, GetParam(), x);
+    ASSERT_EQ(first.status, Status::Converged);
+    ASSERT_GT(first.pivots, 1);
+    Options o;
+    o.warm_start = first.states;
+    std::vector<double> x2;
+    const Result second = run(p, GetParam(), x2, o);
+    EXPECT_EQ(second.status, Status::Converged);
+    EXPECT_EQ(second.pivots, 1);
+    EXPECT_LT(max_abs_diff(x, x2), 1e-12 * (1 + inf_norm(x)));
+}
+
+INSTANTIATE_TEST_SUITE_P(AllStrategies, PivotingEnumeration, ::testing::ValuesIn(kBppMethods),
+                         [](const auto& info) { return std::string(to_string(info.param)) == "bpp-chol" ? "chol"
+                                                       : std::string(to_string(info.param)) == "bpp-down" ? "down"
+                                                       : std::string(to_string(info.param)) == "bpp-sky"  ? "sky"
+                                                                                                          : "bpp"; });
+
+TEST(PivotingMurty, PureBlockPivotingCyclesOnTheNamedProblem) {
+    const auto p = problems::block_pivoting_cycle();
+    Options o;
+    o.murty_after = 1 << 30;
+    o.max_pivots = 200;
+    std::vector<double> x;
+    const Result r = run(p, Method::BppChol, x, o);
+    EXPECT_EQ(r.status, Status::MaxIterations);
+    EXPECT_EQ(r.murty_pivots, 0);
+    // 200 block steps among at most 27 index sets: a deterministic rule that never stops revisits
+    // a set, i.e. cycles
+    ASSERT_EQ(r.tight_per_step.size(), 200u);
+}
+
+TEST(PivotingMurty, SafeguardEngagesAndConvergesToTheEnumeratedAnswer) {
+    const auto p = problems::block_pivoting_cycle();
+    const auto expected = problems::enumerate_boxed_lcp(p, p.lo, p.hi);
+    ASSERT_TRUE(expected.has_value());
+    for (Method m : kBppMethods)
+        for (int murty_after : {0, 1, 3, 10}) {
+            Options o;
+            o.murty_after = murty_after;
+            std::vector<double> x;
+            const Result r = run(p, m, x, o);
+            ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " murty_after " << murty_after;
+            EXPECT_GT(r.murty_pivots, 0) << to_string(m) << " murty_after " << murty_after;
+            EXPECT_LT(max_abs_diff(x, *expected), 1e-9);
+        }
+}
+
+TEST(PivotingBudget, ExhaustedBudgetReturnsTheLeastInfeasibleIterateWithinBounds) {
+    const auto p = problems::random_boxed_mlcp(40, 0, 0, 1e6, 5);
+    std::vector<double> x;
+    Options o;
+    o.max_pivots = 1;
+    const Result r = run(p, Method::Bpp, x, o);
+    ASSERT_EQ(r.status, Status::MaxIterations);
+    EXPECT_FALSE(r.message.empty());
+    EXPECT_TRUE(is_usable(r.status));
+    EXPECT_EQ(r.pivots, 1);
+    for (int i = 0; i < p.n; ++i) {
+        ASSERT_TRUE(std::isfinite(x[i]));
+        EXPECT_GE(x[i], p.lo[i]);
+        EXPECT_LE(x[i], p.hi[i]);
+        if (r.states[i] == RowState::AtLo) { EXPECT_EQ(x[i], p.lo[i]); }
+        if (r.states[i] == RowState::AtHi) { EXPECT_EQ(x[i], p.hi[i]); }
+    }
+}
+
+TEST(PivotingLoop, PinnedRowsStayAtTheirValueAndRowsWithInfiniteBoundsStayFree) {
+    auto p = problems::random_boxed_mlcp(8, 0, 0, 1e2, 9);
+    p.findex.clear();
+    p.lo[3] = p.hi[3] = 0;  // pinned (lo = hi = 0, as a friction row with no normal)
+    p.lo[5] = -std::numeric_limits<double>::infinity();
+    p.hi[5] = std::numeric_limits<double>::infinity();
+    const auto expected = problems::enumerate_boxed_lcp(p, p.lo, p.hi);
+    ASSERT_TRUE(expected.has_value());
+    for (Method m : kBppMethods) {
+        Options o;
+        o.warm_start.assign(p.n, RowState::AtHi);  // impossible for row 5: must start free
+        std::vector<double> x;
+        const Result r = run(p, m, x, o);
+        ASSERT_EQ(r.status, Status::Converged) << to_string(m);
+        EXPECT_EQ(x[3], 0.0);
+        EXPECT_EQ(r.states[5], RowState::Free);
+        EXPECT_LT(max_abs_diff(x, *expected), 1e-8);
+    }
+}
+
+TEST(PivotingLoop, DirectCallLeavesTheFinalIndexSetAndCountsSteps) {
+    const auto owned = problems::random_boxed_mlcp(10, 0, 0, 1e2, 21);
+    const Problem p = owned.view();
+    const pivoting::SymmetricRows A(p, {});
+    auto solver = pivoting::make_dense_refactor_solver(A);
+    ASSERT_TRUE(solver->prepare(0));
+    pivoting::BoxedLcp lcp;
+    lcp.A = &A;
+    lcp.b = owned.b;
+    lcp.lo = owned.lo;
+    lcp.hi = owned.hi;
+    lcp.always_free.assign(p.n, 0);
+    for (int i = 0; i < p.n; ++i) lcp.always_free[i] = std::isinf(lcp.lo[i]) && std::isinf(lcp.hi[i]);
+    std::vector<RowState> states;
+    std::vector<double> x;
+    pivoting::PivotCounters counters;
+    const auto outcome = pivoting::pivot_fixed_bounds(lcp, *solver, pivoting::PivotSettings{}, states, x, counters);
+    ASSERT_EQ(outcome, pivoting::LoopOutcome::Converged);
+    EXPECT_EQ(counters.pivots, static_cast<int>(counters.tight_per_step.size()));
+    EXPECT_EQ(counters.refactor_steps, counters.pivots);
+    for (int i = 0; i < p.n; ++i) {
+        if (states[i] == RowState::AtLo) { EXPECT_EQ(x[i], lcp.lo[i]); }
+        if (states[i] == RowState::AtHi) { EXPECT_EQ(x[i], lcp.hi[i]); }
+    }
+    const auto expected = problems::enumerate_boxed_lcp(owned, owned.lo, owned.hi);
+    ASSERT_TRUE(expected.has_value());
+    EXPECT_LT(max_abs_diff(x, *expected), 1e-8);
+}
+
+}  // namespace
+}  // namespace ode_bpp

@@ -1,0 +1,91 @@
+// Which ordering each BPP method factors in (pivoting/ordering_choice.h).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "linalg/envelope.h"
+#include "ordering/order_rows.h"
+#include "pivoting/ordering_choice.h"
+#include "problems/generators.h"
+
+namespace ode_bpp::pivoting {
+namespace {
+
+std::ptrdiff_t envelope(const SymmetricRows& A, const std::vector<int>& perm) {
+    return linalg::envelope_size(A.row_profile_under(perm));
+}
+
+std::vector<int> order(const Problem& p, ordering::OrderingKind kind, const std::vector<char>* tight = nullptr) {
+    return ordering::order_rows(p.n, p.A, p.lda, p.num_blocks, p.block_row, p.block_body, kind, tight);
+}
+
+TEST(PivotingOrdering, PaperBaselinesKeepTheCallersOrder) {
+    const auto owned = problems::chain_mlcp(20, 10);
+    const Problem p = owned.view();
+    const SymmetricRows A(p, {});
+    for (Method m : {Method::BppChol, Method::BppDown}) {
+        const std::vector<int> perm = choose_ordering(m, p, A, {});
+        for (int i = 0; i < p.n; ++i) EXPECT_EQ(perm[i], i);
+    }
+}
+
+TEST(PivotingOrdering, SkylineVariantsShrinkTheEnvelopeOfAnIslandWithContactsLast) {
+    const auto owned = problems::chain_mlcp(40, 20);
+    const Problem p = owned.view();
+    const SymmetricRows A(p, {});
+    const std::vector<int> identity = choose_ordering(Method::BppChol, p, A, {});
+    const std::vector<int> sky = choose_ordering(Method::BppSky, p, A, {});
+    const std::vector<int> ours = choose_ordering(Method::Bpp, p, A, {});
+    ASSERT_TRUE(ordering::is_permutation(sky, p.n));
+    ASSERT_TRUE(ordering::is_permutation(ours, p.n));
+    EXPECT_EQ(sky, order(p, ordering::OrderingKind::CuthillMcKee));
+    EXPECT_LT(envelope(A, sky), envelope(A, identity) / 2);
+    const std::ptrdiff_t best = std::min(envelope(A, order(p, ordering::OrderingKind::CuthillMcKee)),
+                                         envelope(A, order(p, ordering::OrderingKind::ReverseCuthillMcKee)));
+    EXPECT_EQ(envelope(A, ours), best);
+}
+
+TEST(PivotingOrdering, WarmStartChoiceIsNeverPricedAboveTheCandidates) {
+    const auto owned = problems::chain_mlcp(60, 30);
+    const Problem p = owned.view();
+    const SymmetricRows A(p, {});
+    for (int every : {1, 3, 10}) {  // many to few tight friction rows
+        std::vector<RowState> warm(p.n, RowState::Free);
+        std::vector<char> tight(p.n, 0);
+        int k = 0;
+        for (int i = p.nub; i < p.n; ++i)
+            if (owned.findex[i] >= 0 && k++ % every == 0) {
+                warm[i] = RowState::AtHi;
+                tight[i] = 1;
+            }
+        const std::vector<int> chosen = choose_ordering(Method::Bpp, p, A, warm);
+        ASSERT_TRUE(ordering::is_permutation(chosen, p.n));
+        const double price = warm_solve_price(A, chosen, tight);
+        for (auto kind : {ordering::OrderingKind::CuthillMcKee, ordering::OrderingKind::ReverseCuthillMcKee})
+            for (const std::vector<char>* last : {static_cast<const std::vector<char>*>(nullptr),
+                                                  static_cast<const std::vector<char>*>(&tight)})
+                EXPECT_LE(price, warm_solve_price(A, order(p, kind, last), tight)) << "every " << every;
+    }
+}
+
+TEST(PivotingOrdering, ALongRowMovedLastIsPricedAsTheColumnsItMakesReachTheBottom) {
+    // the column skyline of a row starting at column f ends at that row for every column >= f,
+    // so moving one mid-chain contact row last multiplies the factor's cost; the price sees it
+    const auto owned = problems::chain_mlcp(60, 30);
+    const Problem p = owned.view();
+    const SymmetricRows A(p, {});
+    std::vector<RowState> warm(p.n, RowState::Free);
+    std::vector<char> tight(p.n, 0);
+    const int row = p.nub + 3 * 15 + 1;  // a friction row of a contact mid-chain
+    ASSERT_GE(owned.findex[row], 0);
+    warm[row] = RowState::AtLo;
+    tight[row] = 1;
+    const std::vector<int> moved = order(p, ordering::OrderingKind::CuthillMcKee, &tight);
+    ASSERT_EQ(moved.back(), row);
+    const std::vector<int> plain = order(p, ordering::OrderingKind::CuthillMcKee);
+    EXPECT_GT(warm_solve_price(A, moved, tight), 10 * warm_solve_price(A, plain, tight));
+    EXPECT_NE(choose_ordering(Method::Bpp, p, A, warm).back(), row);
+}
+
+}  // namespace
+}  // namespace ode_bpp::pivoting

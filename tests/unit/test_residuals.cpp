@@ -1,0 +1,137 @@
+// residuals.h against a direct dense computation with the full matrix (both triangles).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ode_bpp/residuals.h"
+#include "problems/generators.h"
+#include "problems/named.h"
+#include "problems/oracle.h"
+
+namespace ode_bpp {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Eigen::MatrixXd full_matrix(const problems::OwnedProblem& p) {
+    Eigen::MatrixXd A(p.n, p.n);
+    for (int i = 0; i < p.n; ++i)
+        for (int j = 0; j < p.n; ++j) A(i, j) = p.a(i, j);
+    return A;
+}
+
+/// The natural residual written out from its definition, with the bounds given explicitly.
+double reference_natural(const problems::OwnedProblem& p, const Eigen::VectorXd& x, const std::vector<double>& lo,
+                         const std::vector<double>& hi) {
+    const Eigen::VectorXd w = full_matrix(p) * x - Eigen::Map<const Eigen::VectorXd>(p.b.data(), p.n);
+    double r = 0;
+    for (int i = 0; i < p.n; ++i) r = std::max(r, std::abs(x[i] - std::clamp(x[i] - w[i], lo[i], hi[i])));
+    return r;
+}
+
+TEST(Residuals, MatchTheDefinitionOnBoxedRows) {
+    auto p = problems::random_boxed_mlcp(12, 2, 0, 1e4, 3);
+    p.findex.clear();
+    Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(p.n, -0.7, 0.9);
+    std::vector<double> lo = p.lo, hi = p.hi;
+    for (int i = 0; i < p.nub; ++i) lo[i] = -kInf, hi[i] = kInf;
+    const Residuals r = compute_residuals(p, ConstStrided{x.data(), 1});
+    EXPECT_DOUBLE_EQ(r.natural, reference_natural(p, x, lo, hi));
+    EXPECT_DOUBLE_EQ(r.relative_natural,
+                     r.natural / std::max(1.0, Eigen::Map<const Eigen::VectorXd>(p.b.data(), p.n).cwiseAbs().maxCoeff()));
+    EXPECT_GT(r.natural, 0);
+    EXPECT_EQ(r.friction, 0);
+}
+
+TEST(Residuals, LeadingNubRowsAreUnboundedWhateverTheirBoundsSay) {
+    auto p = problems::random_boxed_mlcp(6, 3, 0, 10, 5);
+    p.findex.clear();
+    for (int i = 0; i < 3; ++i) p.lo[i] = p.hi[i] = 0;  // ignored: i < nub
+    const Eigen::VectorXd x = Eigen::VectorXd::Constant(p.n, 0.3);
+    std::vector<double> lo = p.lo, hi = p.hi;
+    for (int i = 0; i < 3; ++i) lo[i] = -kInf, hi[i] = kInf;
+    EXPECT_DOUBLE_EQ(compute_residuals(p, ConstStrided{x.data(), 1}).natural, reference_natural(p, x, lo, hi));
+}
+
+TEST(Residuals, VanishAtTheEnumeratedSolution) {
+    const auto p = problems::random_boxed_mlcp(8, 1, 0, 1e3, 11);
+    const auto x = problems::enumerate_boxed_lcp(p, p.lo, p.hi);
+    ASSERT_TRUE(x.has_value());
+    const Residuals r = compute_residuals(p, ConstStrided{x->data(), 1});
+    EXPECT_LT(r.scaled_natural, 1e-12);
+    EXPECT_LT(r.free, 1e-12);
+}
+
+TEST(Residuals, FrictionBoundsComeFromTheReturnedNormals) {
+    const auto p = problems::dantzig_friction_3x3();  // row 1: friction of row 0, mu = 0.5
+    const std::vector<double> x = {0.4, 0.3, -0.1};   // |x1| = 0.3 > 0.5 * 0.4
+    const Residuals r = compute_residuals(p, ConstStrided{x.data(), 1});
+    EXPECT_NEAR(r.friction, 0.3 - 0.2, 1e-15);
+    const Eigen::VectorXd xv = Eigen::Map<const Eigen::VectorXd>(x.data(), 3);
+    EXPECT_DOUBLE_EQ(r.natural, reference_natural(p, xv, {0, -0.2, -kInf}, {kInf, 0.2, kInf}));
+}
+
+TEST(Residuals, StridedXGivesTheSameNumbers) {
+    const auto p = problems::chain_mlcp(4, 3);
+    std::vector<double> x(p.n), pairs(2 * p.n);
+    for (int i = 0; i < p.n; ++i) {
+        x[i] = std::sin(1.0 + i);
+        pairs[2 * i + 1] = x[i];
+        pairs[2 * i] = 1e300;  // ODE's interleaved b: must not be read as x
+    }
+    const Residuals a = compute_residuals(p, ConstStrided{x.data(), 1});
+    const Residuals b = compute_residuals(p, ConstStrided{pairs.data() + 1, 2});
+    EXPECT_EQ(a.natural, b.natural);
+    EXPECT_EQ(a.scaled_natural, b.scaled_natural);
+    EXPECT_EQ(a.friction, b.friction);
+}
+
+TEST(Residuals, ZeroNormalWithInfiniteMuGivesZeroBoundNotNaN) {
+    auto p = problems::dantzig_friction_3x3();
+    p.hi[1] = kInf;
+    const std::vector<double> x = {0.0, 0.1, 0.0};
+    const auto bounds = effective_bounds(p, ConstStrided{x.data(), 1}, 1);
+    EXPECT_EQ(bounds.first, 0.0);
+    EXPECT_EQ(bounds.second, 0.0);
+    const Residuals r = compute_residuals(p, ConstStrided{x.data(), 1});
+    EXPECT_TRUE(std::isfinite(r.natural));
+    EXPECT_DOUBLE_EQ(r.friction, 0.1);
+}
+
+TEST(Residuals, FreeResidualUsesTheGivenIndexSet) {
+    const auto p = problems::random_boxed_mlcp(7, 7, 0, 100, 2);  // all unbounded
+    std::vector<double> x(p.n, 0.25);
+    const Eigen::VectorXd w = full_matrix(p) * Eigen::Map<Eigen::VectorXd>(x.data(), p.n) -
+                              Eigen::Map<const Eigen::VectorXd>(p.b.data(), p.n);
+    std::vector<RowState> states(p.n, RowState::AtLo);
+    states[4] = RowState::Free;
+    EXPECT_DOUBLE_EQ(compute_residuals(p, ConstStrided{x.data(), 1}, &states).free, std::abs(w[4]));
+    EXPECT_DOUBLE_EQ(compute_residuals(p, ConstStrided{x.data(), 1}).free, w.cwiseAbs().maxCoeff());
+}
+
+TEST(Residuals, ScaledResidualIsInvariantUnderRowScaling) {
+    // D A D, D b, bounds / D: the same problem in other units must get the same scaled number
+    auto p = problems::random_boxed_mlcp(8, 0, 0, 1e3, 4);
+    p.findex.clear();
+    std::vector<double> x(p.n);
+    for (int i = 0; i < p.n; ++i) x[i] = 0.3 * std::cos(i);
+    const double before = compute_residuals(p, ConstStrided{x.data(), 1}).scaled_natural;
+    for (int i = 0; i < p.n; ++i) {
+        const double d = std::pow(10.0, i % 4);
+        for (int j = 0; j < p.n; ++j) {
+            p.a(i, j) *= d;
+            p.a(j, i) *= d;
+        }
+        p.b[i] *= d;
+        p.lo[i] /= d;
+        p.hi[i] /= d;
+        x[i] /= d;
+    }
+    EXPECT_NEAR(compute_residuals(p, ConstStrided{x.data(), 1}).scaled_natural, before, 1e-12 * before);
+}
+
+}  // namespace
+}  // namespace ode_bpp

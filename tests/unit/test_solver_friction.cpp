@@ -1,0 +1,130 @@
+// Friction semantics: Frozen reproduces ODE's Dantzig; Consistent keeps every friction impulse
+// inside mu times its normal.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "ode_bpp/residuals.h"
+#include "ode_bpp/solver.h"
+#include "problems/generators.h"
+#include "problems/named.h"
+#include "problems/oracle.h"
+
+namespace ode_bpp {
+namespace {
+
+const Method kBppMethods[] = {Method::BppChol, Method::BppDown, Method::BppSky, Method::Bpp};
+
+double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
+    double d = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+    return d;
+}
+
+Result run(const problems::OwnedProblem& p, Method m, FrictionMode f, std::vector<double>& x, Options o = {}) {
+    o.method = m;
+    o.friction = f;
+    x.assign(p.n, 0.0);
+    return solve(p, o, x.data());
+}
+
+TEST(SolverFriction, DantzigBreaksTheConeOnTheNotesExampleAndFrozenBppMatchesIt) {
+    const auto p = problems::dantzig_friction_3x3();
+    std::vector<double> xd;
+    const Result rd = run(p, Method::Dantzig, FrictionMode::Frozen, xd);
+    ASSERT_EQ(rd.status, Status::Converged);
+    // ODE's Dantzig takes the bound from the normal before the friction row moved it
+    EXPECT_GT(rd.friction_error, 1e-3);
+    EXPECT_GT(std::abs(xd[1]), 0.5 * xd[0]);
+    const auto frozen = problems::enumerate_frozen_friction(p);
+    ASSERT_TRUE(frozen.has_value());
+    EXPECT_LT(max_abs_diff(xd, *frozen), 1e-12);
+    for (Method m : kBppMethods) {
+        std::vector<double> x;
+        const Result r = run(p, m, FrictionMode::Frozen, x);
+        ASSERT_EQ(r.status, Status::Converged);
+        EXPECT_LT(max_abs_diff(x, xd), 1e-12) << to_string(m);
+    }
+}
+
+TEST(SolverFriction, ConsistentModeIsAFixedPointOfItsOwnBounds) {
+    const auto p = problems::dantzig_friction_3x3();
+    for (Method m : kBppMethods) {
+        std::vector<double> x;
+        const Result r = run(p, m, FrictionMode::Consistent, x);
+        ASSERT_EQ(r.status, Status::Converged) << r.message;
+        EXPECT_GT(r.friction_rounds, 0);
+        EXPECT_LT(r.friction_error, 1e-8);
+        EXPECT_LT(r.scaled_natural_residual, 1e-8);
+        // the fixed-bound problem with bounds +-mu x0 taken from the answer has the answer as solution
+        const double bound = 0.5 * x[0];
+        const auto again = problems::enumerate_boxed_lcp(p, {0, -bound, -INFINITY}, {INFINITY, bound, INFINITY});
+        ASSERT_TRUE(again.has_value());
+        EXPECT_LT(max_abs_diff(x, *again), 1e-8) << to_string(m);
+    }
+}
+
+TEST(SolverFriction, FrozenBppMatchesOdesDantzigOnRandomContacts) {
+    int compared = 0;
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+        const auto p = problems::random_boxed_mlcp(30, 3, 6, 1e4, seed);
+        std::vector<double> xd, x;
+        ASSERT_EQ(run(p, Method::Dantzig, FrictionMode::Frozen, xd).status, Status::Converged);
+        const Result r = run(p, Method::Bpp, FrictionMode::Frozen, x);
+        ASSERT_EQ(r.status, Status::Converged);
+        double scale = 1;
+        for (double v : xd) scale = std::max(scale, std::abs(v));
+        EXPECT_LT(max_abs_diff(x, xd), 1e-9 * scale) << "seed " << seed;
+        ++compared;
+    }
+    EXPECT_EQ(compared, 8);
+}
+
+TEST(SolverFriction, ConsistentModeKeepsEveryFrictionRowInsideItsCone) {
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        const auto p = problems::random_boxed_mlcp(30, 3, 6, 1e4, seed);
+        for (Method m : kBppMethods) {
+            Options o;
+            o.max_friction_rounds = 200;
+            std::vector<double> x;
+            const Result r = run(p, m, FrictionMode::Consistent, x, o);
+            ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " seed " << seed << ": " << r.message;
+            double scale = 1;
+            for (double v : x) scale = std::max(scale, std::abs(v));
+            EXPECT_LT(r.friction_error, 1e-8 * scale) << to_string(m) << " seed " << seed;
+            EXPECT_LT(r.scaled_natural_residual, 1e-8) << to_string(m) << " seed " << seed;
+        }
+    }
+}
+
+TEST(SolverFriction, ConsistentModeReportsWhenItsRoundsRunOut) {
+    const auto p = problems::random_boxed_mlcp(30, 3, 6, 1e4, 2);
+    Options o;
+    o.max_friction_rounds = 1;
+    std::vector<double> x;
+    const Result r = run(p, Method::Bpp, FrictionMode::Consistent, x, o);
+    EXPECT_EQ(r.status, Status::FrictionNotConsistent);
+    EXPECT_TRUE(is_usable(r.status));
+    EXPECT_EQ(r.friction_rounds, 1);
+    EXPECT_FALSE(r.message.empty());
+    for (double v : x) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(SolverFriction, ZeroNormalPinsItsFrictionRowsAtZero) {
+    auto p = problems::random_boxed_mlcp(12, 0, 2, 1e2, 5);
+    p.b[0] = -10;  // contact 0 pulls: its normal stays at 0, so its friction must be 0
+    for (FrictionMode f : {FrictionMode::Frozen, FrictionMode::Consistent})
+        for (Method m : kBppMethods) {
+            std::vector<double> x;
+            const Result r = run(p, m, f, x);
+            ASSERT_EQ(r.status, Status::Converged);
+            ASSERT_EQ(x[0], 0.0);
+            EXPECT_EQ(x[1], 0.0);
+            EXPECT_EQ(x[2], 0.0);
+            EXPECT_NE(r.states[1], RowState::Free);
+        }
+}
+
+}  // namespace
+}  // namespace ode_bpp

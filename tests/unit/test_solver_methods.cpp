@@ -1,0 +1,213 @@
+// solve() across methods: the BPP variants agree with each other, with ODE's Dantzig and with
+// the residual certificate over a range of condition numbers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ode_bpp/residuals.h"
+#include "ode_bpp/solver.h"
+#include "problems/generators.h"
+#include "problems/named.h"
+#include "problems/oracle.h"
+
+namespace ode_bpp {
+namespace {
+
+const Method kBppMethods[] = {Method::BppChol, Method::BppDown, Method::BppSky, Method::Bpp};
+
+double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
+    double d = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+    return d;
+}
+
+double inf_norm(const std::vector<double>& a) {
+    double m = 0;
+    for (double v : a) m = std::max(m, std::abs(v));
+    return m;
+}
+
+Result run(const problems::OwnedProblem& p, Method m, std::vector<double>& x, Options o = {}) {
+    o.method = m;
+    x.assign(p.n, std::numeric_limits<double>::quiet_NaN());
+    return solve(p, o, x.data());
+}
+
+bool all_finite(const std::vector<double>& x) {
+    return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+}
+
+TEST(SolverNames, RoundTrip) {
+    const auto names = method_names();
+    ASSERT_EQ(names.size(), 6u);
+    for (const auto& name : names) EXPECT_EQ(to_string(*method_from_string(name)), name);
+    EXPECT_FALSE(method_from_string("lemke").has_value());
+    EXPECT_EQ(*friction_from_string(to_string(FrictionMode::Consistent)), FrictionMode::Consistent);
+    EXPECT_EQ(*friction_from_string(to_string(FrictionMode::Frozen)), FrictionMode::Frozen);
+    EXPECT_STREQ(to_string(Status::NotSpd), "not-spd");
+}
+
+TEST(SolverAgreement, BppVariantsAgreeWithEachOtherAndWithDantzig) {
+    for (double cond : {1e2, 1e4, 1e6, 1e8})
+        for (std::uint64_t seed = 1; seed <= 3; ++seed)
+            for (bool friction : {false, true}) {
+                auto p = problems::random_boxed_mlcp(36, 5, 4, cond, seed);
+                if (!friction) p.findex.clear();
+                std::vector<double> reference;
+                const Result rd = run(p, Method::Dantzig, reference);
+                ASSERT_EQ(rd.status, Status::Converged);
+                // Dantzig and BPP solve the same (frozen-friction) problem exactly; both are
+                // backward stable, so they differ by ~ cond * eps relative
+                const double tol = 1e3 * cond * std::numeric_limits<double>::epsilon() * (1 + inf_norm(reference));
+                for (Method m : kBppMethods) {
+                    std::vector<double> x;
+                    Options o;
+                    o.max_pivots = 1000;
+                    const Result r = run(p, m, x, o);
+                    ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " cond " << cond << " seed " << seed;
+                    EXPECT_LT(max_abs_diff(x, reference), tol)
+                        << to_string(m) << " cond " << cond << " seed " << seed << " friction " << friction;
+                    EXPECT_EQ(r.downdate_steps + r.refactor_steps, r.pivots) << to_string(m);
+                    EXPECT_EQ(static_cast<int>(r.tight_per_step.size()), r.pivots);
+                }
+            }
+}
+
+TEST(SolverAgreement, ChainIslandWithStructureMatchesDantzig) {
+    const auto p = problems::chain_mlcp(30, 12, 100, 1e-6);
+    std::vector<double> reference;
+    ASSERT_EQ(run(p, Method::Dantzig, reference).status, Status::Converged);
+    for (Method m : kBppMethods) {
+        std::vector<double> x;
+        const Result r = run(p, m, x);
+        ASSERT_EQ(r.status, Status::Converged) << to_string(m) << ": " << r.message;
+        EXPECT_LT(max_abs_diff(x, reference), 1e-9 * inf_norm(reference)) << to_string(m);
+        EXPECT_GT(r.tight, 0);
+    }
+}
+
+/// Consistent friction: the answer satisfies the MLCP with bounds from its own normals, so the
+/// natural residual certifies it. Certified to the per-row tolerance, over cond 1e2 .. 1e14.
+TEST(SolverCertificate, NaturalResidualCertifiesAnswersFromCond1e2To1e14) {
+    int converged = 0, total = 0;
+    for (double cond = 1e2; cond <= 1e14; cond *= 100)
+        for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+            const auto p = problems::random_boxed_mlcp(24, 4, 3, cond, seed);
+            Options o;
+            o.friction = FrictionMode::Consistent;
+            o.max_pivots = 3000;
+            o.max_friction_rounds = 200;
+            std::vector<double> x;
+            const Result r = run(p, Method::Bpp, x, o);
+            ++total;
+            ASSERT_TRUE(all_finite(x));
+            ASSERT_TRUE(r.status == Status::Converged || r.status == Status::FallbackUsed)
+                << to_string(r.status) << " cond " << cond << " seed " << seed << ": " << r.message;
+            converged += r.status == Status::Converged;
+            // an exact solve of a perturbation of size eps * cond in x: scaled residual ~ tol
+            EXPECT_LT(r.scaled_natural_residual, 10 * o.tolerance) << "cond " << cond << " seed " << seed;
+            EXPECT_LT(r.friction_error, 10 * o.tolerance * (1 + inf_norm(x))) << "cond " << cond << " seed " << seed;
+            const Residuals check = compute_residuals(p, ConstStrided{x.data(), 1}, &r.states);
+            EXPECT_EQ(check.scaled_natural, r.scaled_natural_residual);
+        }
+    EXPECT_EQ(total, 21);
+    EXPECT_GE(converged, 15);
+}
+
+TEST(SolverCertificate, FactorErrorIsReportedForDeletionVariantsOnly) {
+    const auto p = problems::chain_mlcp(20, 8, 100, 1e-6);
+    for (const std::string& name : method_names()) {
+        Options o;
+        o.compute_factor_error = true;
+        std::vector<double> x;
+        const Result r = run(p, *method_from_string(name), x, o);
+        const bool deletes = name == "bpp-down" || name == "bpp-sky" || name == "bpp";
+        if (deletes) {
+            EXPECT_GE(r.factor_error, 0) << name;
+            EXPECT_LT(r.factor_error, 1e-8) << name;
+        } else {
+            EXPECT_TRUE(std::isnan(r.factor_error)) << name;
+        }
+    }
+}
+
+TEST(SolverInterface, StridedPairsLikeOdeAreReadAndWrittenInPlace) {
+    const auto p = problems::chain_mlcp(10, 4);
+    std::vector<double> pairs(2 * p.n);
+    for (int i = 0; i < p.n; ++i) pairs[2 * i] = p.b[i];
+    Problem view = p.view();
+    view.b = ConstStrided{pairs.data(), 2};
+    std::vector<double> x;
+    const Result contiguous = run(p, Method::Bpp, x);
+    const Result strided = solve(view, Options{}, Strided{pairs.data() + 1, 2});
+    EXPECT_EQ(strided.status, contiguous.status);
+    for (int i = 0; i < p.n; ++i) {
+        EXPECT_EQ(pairs[2 * i], p.b[i]);
+        EXPECT_EQ(pairs[2 * i + 1], x[i]);
+    }
+}
+
+TEST(SolverInterface, RecordStepsCanBeTurnedOff) {
+    const auto p = problems::random_boxed_mlcp(20, 2, 2, 1e3, 3);
+    Options o;
+    o.record_steps = false;
+    std::vector<double> x;
+    const Result r = run(p, Method::Bpp, x, o);
+    EXPECT_GT(r.pivots, 0);
+    EXPECT_TRUE(r.tight_per_step.empty());
+}
+
+TEST(SolverWarmStart, WarmStartOfAPerturbedProblemConvergesFasterToTheSameAnswer) {
+    for (Method m : kBppMethods) {
+        auto p = problems::chain_mlcp(30, 12, 100, 1e-6);
+        std::vector<double> x;
+        const Result cold = run(p, m, x);
+        ASSERT_EQ(cold.status, Status::Converged);
+        for (double& b : p.b) b *= 1.01;  // the next time step, roughly
+        std::vector<double> x_cold, x_warm;
+        const Result again = run(p, m, x_cold);
+        Options o;
+        o.warm_start = cold.states;
+        const Result warm = run(p, m, x_warm, o);
+        ASSERT_EQ(warm.status, Status::Converged);
+        EXPECT_LE(warm.pivots, again.pivots) << to_string(m);
+        EXPECT_LT(max_abs_diff(x_warm, x_cold), 1e-9 * inf_norm(x_cold)) << to_string(m);
+    }
+}
+
+TEST(SolverContinuation, StagesReachTheSameAnswer) {
+    const auto p = problems::chain_mlcp(25, 10, 1000, 1e-10);
+    std::vector<double> x0, x1;
+    const Result plain = run(p, Method::Bpp, x0);
+    Options o;
+    o.continuation_stages = 4;
+    const Result staged = run(p, Method::Bpp, x1, o);
+    ASSERT_TRUE(plain.status == Status::Converged || plain.status == Status::FallbackUsed) << plain.message;
+    ASSERT_EQ(staged.status, plain.status) << staged.message;
+    EXPECT_GT(staged.pivots, plain.pivots - 1);  // the stages cost pivots of their own
+    EXPECT_LT(max_abs_diff(x0, x1), 1e-8 * inf_norm(x0));
+}
+
+TEST(SolverPgs, ConvergesOnAWellConditionedProblemAndReportsMaxIterationsOtherwise) {
+    auto p = problems::random_boxed_mlcp(15, 0, 0, 3, 4);
+    p.findex.clear();
+    const auto expected = problems::enumerate_boxed_lcp(p, p.lo, p.hi);
+    ASSERT_TRUE(expected.has_value());
+    Options o;
+    o.pgs_iterations = 2000;
+    std::vector<double> x;
+    const Result r = run(p, Method::Pgs, x, o);
+    EXPECT_EQ(r.status, Status::Converged);
+    EXPECT_LE(r.scaled_natural_residual, o.tolerance);
+    EXPECT_LT(max_abs_diff(x, *expected), 1e-7);
+    o.pgs_iterations = 1;
+    const Result short_run = run(p, Method::Pgs, x, o);
+    EXPECT_EQ(short_run.status, Status::MaxIterations);
+    EXPECT_FALSE(short_run.message.empty());
+    EXPECT_TRUE(all_finite(x));
+}
+
+}  // namespace
+}  // namespace ode_bpp

@@ -1,0 +1,193 @@
+// validate() and solve() on malformed problems: InvalidInput, a message naming the defect,
+// x zeroed and finite, no crash.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "ode_bpp/solver.h"
+#include "ode_bpp/validation.h"
+#include "problems/generators.h"
+#include "problems/named.h"
+
+namespace ode_bpp {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+problems::OwnedProblem good_problem() { return problems::random_boxed_mlcp(9, 1, 2, 1e3, 7); }
+
+/// Runs every method on p and checks the invalid-input contract; returns the message.
+std::string expect_invalid(const Problem& p) {
+    const ValidationResult v = validate(p);
+    EXPECT_FALSE(v.valid);
+    EXPECT_FALSE(v.message.empty());
+    for (const std::string& name : method_names()) {
+        Options o;
+        o.method = *method_from_string(name);
+        std::vector<double> x(static_cast<std::size_t>(std::max(p.n, 1)) + 4, 123.0);
+        const Result r = solve(p, o, x.data());
+        EXPECT_EQ(r.status, Status::InvalidInput) << name;
+        EXPECT_EQ(r.message, v.message) << name;
+        EXPECT_FALSE(is_usable(r.status));
+        for (int i = 0; i < p.n; ++i) EXPECT_EQ(x[i], 0.0) << name << " row " << i;
+        for (std::size_t i = static_cast<std::size_t>(std::max(p.n, 0)); i < x.size(); ++i)
+            EXPECT_EQ(x[i], 123.0) << "wrote past n";
+    }
+    return v.message;
+}
+
+TEST(Validation, GeneratedProblemsAreValid) {
+    EXPECT_TRUE(validate(good_problem()).valid);
+    EXPECT_TRUE(validate(problems::chain_mlcp(5, 3)).valid);
+    EXPECT_TRUE(validate(problems::dantzig_friction_3x3()).valid);
+}
+
+TEST(Validation, NaNInLowerTriangleNamesTheEntry) {
+    auto p = good_problem();
+    p.a(5, 2) = kNaN;
+    EXPECT_NE(expect_invalid(p).find("A(5,2)"), std::string::npos);
+}
+
+TEST(Validation, InfInAIsRejected) {
+    auto p = good_problem();
+    p.a(3, 3) = kInf;
+    EXPECT_NE(expect_invalid(p).find("row 3"), std::string::npos);
+}
+
+TEST(Validation, UpperTriangleIsNotRead) {
+    auto p = good_problem();
+    p.a(2, 5) = kNaN;  // ODE leaves the strict upper triangle unset
+    EXPECT_TRUE(validate(p).valid);
+}
+
+TEST(Validation, NonPositiveDiagonal) {
+    auto p = good_problem();
+    p.a(4, 4) = 0;
+    EXPECT_NE(expect_invalid(p).find("row 4"), std::string::npos);
+}
+
+TEST(Validation, NonFiniteB) {
+    auto p = good_problem();
+    p.b[6] = kInf;
+    EXPECT_NE(expect_invalid(p).find("row 6"), std::string::npos);
+}
+
+TEST(Validation, NaNBound) {
+    auto p = good_problem();
+    p.lo[8] = kNaN;
+    EXPECT_NE(expect_invalid(p).find("row 8"), std::string::npos);
+}
+
+TEST(Validation, InfiniteBoundsAreAllowed) {
+    auto p = good_problem();
+    p.lo[8] = -kInf;
+    p.hi[8] = kInf;
+    EXPECT_TRUE(validate(p).valid);
+}
+
+TEST(Validation, LoAboveHi) {
+    auto p = good_problem();
+    p.lo[8] = -0.1;
+    p.hi[8] = -0.2;
+    EXPECT_NE(expect_invalid(p).find("row 8"), std::string::npos);
+}
+
+TEST(Validation, PositiveLowerBoundBreaksOdesContract) {
+    auto p = good_problem();
+    p.lo[8] = 0.1;
+    p.hi[8] = 0.2;
+    EXPECT_NE(expect_invalid(p).find("lo <= 0 <= hi"), std::string::npos);
+}
+
+TEST(Validation, FindexOutOfRange) {
+    auto p = good_problem();
+    p.findex[8] = 9;
+    EXPECT_NE(expect_invalid(p).find("row 8"), std::string::npos);
+    p.findex[8] = -2;
+    expect_invalid(p);
+}
+
+TEST(Validation, FindexPointingAtItself) {
+    auto p = good_problem();
+    p.findex[8] = 8;
+    EXPECT_NE(expect_invalid(p).find("itself"), std::string::npos);
+}
+
+TEST(Validation, FindexPointingAtAFrictionRow) {
+    auto p = good_problem();  // rows 1-3 and 4-6 are contacts: 2 and 3 are friction rows of 1
+    ASSERT_EQ(p.findex[2], 1);
+    p.findex[8] = 2;
+    EXPECT_NE(expect_invalid(p).find("friction row"), std::string::npos);
+}
+
+TEST(Validation, NegativeFrictionCoefficient) {
+    auto p = good_problem();
+    p.hi[2] = -0.5;
+    EXPECT_NE(expect_invalid(p).find("row 2"), std::string::npos);
+}
+
+TEST(Validation, FrictionRowInsideNub) {
+    auto p = good_problem();
+    p.findex[0] = 1;
+    EXPECT_NE(expect_invalid(p).find("nub"), std::string::npos);
+}
+
+TEST(Validation, EmptyProblem) {
+    Problem p;
+    expect_invalid(p);
+}
+
+TEST(Validation, NullMatrix) {
+    auto owned = good_problem();
+    Problem p = owned.view();
+    p.A = nullptr;
+    expect_invalid(p);
+}
+
+TEST(Validation, StrideSmallerThanN) {
+    auto owned = good_problem();
+    Problem p = owned.view();
+    p.lda = p.n - 1;
+    expect_invalid(p);
+}
+
+TEST(Validation, NubOutOfRange) {
+    auto owned = good_problem();
+    Problem p = owned.view();
+    p.nub = p.n + 1;
+    expect_invalid(p);
+}
+
+TEST(Validation, BadBlockStructure) {
+    auto p = problems::chain_mlcp(4, 2);
+    p.block_row.back() = p.n - 1;
+    expect_invalid(p);
+}
+
+TEST(Validation, WarmStartOfWrongSizeIsInvalidInput) {
+    auto p = good_problem();
+    Options o;
+    o.warm_start.assign(3, RowState::Free);
+    std::vector<double> x(p.n, 5.0);
+    const Result r = solve(p, o, x.data());
+    EXPECT_EQ(r.status, Status::InvalidInput);
+    for (double v : x) EXPECT_EQ(v, 0.0);
+}
+
+TEST(Validation, NonFiniteToleranceIsInvalidInput) {
+    auto p = good_problem();
+    Options o;
+    o.tolerance = kNaN;
+    std::vector<double> x(p.n, 5.0);
+    EXPECT_EQ(solve(p, o, x.data()).status, Status::InvalidInput);
+}
+
+TEST(Validation, NullXIsInvalidInputWithoutCrash) {
+    auto p = good_problem();
+    EXPECT_EQ(solve(p, Options{}, static_cast<double*>(nullptr)).status, Status::InvalidInput);
+}
+
+}  // namespace
+}  // namespace ode_bpp

@@ -40,12 +40,32 @@ test-sanitize: ode
 	@cd $(ASAN_DIR) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j$(JOBS) -L "unit|integration" --timeout 1200
 
+# libFuzzer on the file reader and the solver entry point, for a bounded time per target.
+FUZZ_DIR     := $(BUILD)/fuzz
+FUZZ_SECONDS ?= 60
+fuzz: ode
+	@cmake -S . -B $(FUZZ_DIR) -DCMAKE_BUILD_TYPE=Debug -DODE_BPP_FUZZ=ON -DCMAKE_C_COMPILER=clang \
+	  -DCMAKE_CXX_COMPILER=clang++ -DODE_BPP_BUILD_DEMOS=OFF -DODE_BPP_BUILD_BENCH=OFF \
+	  -DODE_ROOT=$(abspath $(BUILD))/ode-install >/dev/null
+	@echo "[fuzz] compiling the fuzz targets with clang (libFuzzer, ASan, UBSan)"
+	@cmake --build $(FUZZ_DIR) -j$(JOBS) --target fuzz_read_mlcp fuzz_solve
+	@echo "[fuzz] $(FUZZ_SECONDS) s per target; crashes are kept in tests/data/fuzz-regressions/"
+	@bash tests/fuzz/run-fuzz.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+
 # The headline comparison: the scenes stepped with ODE's Dantzig and with ode-bpp.
 demo: build
 	@mkdir -p results
 	@echo "[demo] the paper's six scenes, 20 s each, stepped with ODE's dantzig and with bpp side by side"
 	@echo "[demo] per island and step: rows, tight fraction, solve time, pivots, residual -> results/demo.csv"
 	@set -o pipefail; $(CMAKE_DIR)/demos/ode-bpp-demo paper --compare dantzig,bpp --csv results/demo.csv | tee results/demo.txt
+
+# Google Benchmark: the kernels (factor, delete one row, solve) and the paper's Fig. 4; CSV in results/.
+bench: build
+	@mkdir -p results
+	@echo "[bench] kernels: factorization, row deletion, solve, skyline vs dense (about 2 minutes)"
+	@$(CMAKE_DIR)/bench/bench_kernels --benchmark_out=results/bench_kernels.csv --benchmark_out_format=csv
+	@echo "[bench] Fig. 4: speed-up of deletion over refactoring by % tight (about 1 minute)"
+	@$(CMAKE_DIR)/bench/bench_fig4 --benchmark_out=results/bench_fig4.csv --benchmark_out_format=csv
 
 install: build
 	cmake --install $(CMAKE_DIR) --prefix $(or $(PREFIX),/usr/local/ode-bpp)

@@ -7,7 +7,7 @@ ASAN_DIR   := $(BUILD)/asan
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all deps ode configure build test test-sanitize demo bench stability fuzz install clean distclean
+.PHONY: all deps ode configure build test test-sanitize demo bench fuzz ode-demos install clean distclean
 
 all: build
 
@@ -66,6 +66,10 @@ bench: build
 	@$(CMAKE_DIR)/bench/bench_kernels --benchmark_out=results/bench_kernels.csv --benchmark_out_format=csv
 	@echo "[bench] Fig. 4: speed-up of deletion over refactoring by % tight (about 1 minute)"
 	@$(CMAKE_DIR)/bench/bench_fig4 --benchmark_out=results/bench_fig4.csv --benchmark_out_format=csv
+
+# ODE's own demos (ode/demo), unchanged, headless under Xvfb, dantzig vs bpp; results/ode-demos/
+ode-demos: build
+	@bash scripts/ode-demos.sh $(BUILD) results/ode-demos
 
 install: build
 	cmake --install $(CMAKE_DIR) --prefix $(or $(PREFIX),/usr/local/ode-bpp)

@@ -9,7 +9,8 @@
 #              BUILD_DIR/cmake/bin/ode-bpp-run unless ODE_BPP_RUN names another one
 #   OUT_DIR    receives ode-demos.csv, ode-demos.md, png/DEMO.png and logs/DEMO.SOLVER.log
 # Environment: ODE_DEMOS_FRAMES (default 600), ODE_DEMOS_TIMEOUT seconds per run (default 300),
-#   ODE_DEMOS_SOLVERS (default "dantzig bpp"), ODE_DEMOS_ONLY (space-separated demo names).
+#   ODE_DEMOS_SOLVERS (default "dantzig bpp"), ODE_DEMOS_ONLY (space-separated demo names),
+#   ODE_DEMOS_ALL=1 also runs the demos whose source never calls dWorldStep.
 set -euo pipefail
 
 BUILD=$(realpath "${1:?usage: ode-demos.sh BUILD_DIR OUT_DIR}")
@@ -21,42 +22,47 @@ LAUNCHER=${ODE_BPP_RUN:-$BUILD/cmake/bin/ode-bpp-run}
 DEMO_DIR=$BUILD/ode-work/ode/demo
 SCREEN=1024x768x24
 
+# Keys typed before the first frame (DS_KEYS), where a demo's default mode would not show the
+# solver: demo_crash steps with dWorldQuickStep until 'f' and fires its cannon on 'x';
+# demo_buggy stands still until 'a' (faster); demo_trimesh drops objects on its mesh on b, s, c, x.
+declare -A KEYS=([demo_crash]=fx [demo_buggy]=aa [demo_trimesh]=bscxbscxbs)
+
 say() { echo "[ode-demos] $*"; }
 die() { echo "[ode-demos] error: $*" >&2; exit 1; }
 
 [[ -d "$DEMO_DIR" ]] || die "no ODE demos in $DEMO_DIR (build ODE with scripts/build-ode.sh $BUILD patches)"
-grep -q DS_MAX_FRAMES "$BUILD/ode-work/drawstuff/src/x11.cpp" \
+grep -q DS_KEYS "$BUILD/ode-work/drawstuff/src/x11.cpp" \
     || die "drawstuff in $BUILD/ode-work has no frame limit: rebuild ODE with patches/0002-drawstuff-frame-limit.patch"
 [[ -x "$LAUNCHER" ]] || die "no launcher at $LAUNCHER (build ode-bpp, or set ODE_BPP_RUN)"
 for tool in xvfb-run convert timeout; do command -v "$tool" >/dev/null || die "$tool is not installed"; done
 [[ "$FRAMES" =~ ^[1-9][0-9]*$ ]] || die "ODE_DEMOS_FRAMES must be a positive number"
+(( ${#SOLVERS[@]} >= 1 )) || die "ODE_DEMOS_SOLVERS is empty"
 
-# --- what a demo is, from its source -------------------------------------------------------
+# --- what a demo is, from its source ---------------------------------------------------------
 
-# The source file of a demo (ode/demo/demo_X.cpp or .c)
-demo_source() { ls "$DEMO_DIR/$1".c "$DEMO_DIR/$1".cpp 2>/dev/null | head -1; }
+demo_source() {
+    local f
+    for f in "$DEMO_DIR/$1".c "$DEMO_DIR/$1".cpp; do [[ -f "$f" ]] && { echo "$f"; return; }; done
+    return 0
+}
 
-# The code of a source file without // comments and without lines inside /* */ blocks
+# A source file without // comments and without the lines of /* */ blocks
 code_of() { sed -e 's://.*$::' "$1" | awk '/\/\*/ { c = 1 } !c { print } /\*\// { c = 0 }'; }
 
-# Why a demo makes no world step with constraints on ode-bpp, judged from its source
-reason_not_exercised() {
+# Why a demo cannot exercise ode-bpp, judged from its source; empty if it calls dWorldStep
+reason_not_run() {
     local src code
     src=$(demo_source "$1")
     [[ -n "$src" ]] || { echo "no source found"; return; }
     code=$(code_of "$src")
-    if ! grep -q dsSimulationLoop <<<"$code"; then
-        echo "not a drawstuff demo (a test program without a window)"
-    elif grep -qE 'dWorldStep|[.>]step *\(' <<<"$code"; then
-        if grep -qE 'dWorldQuickStep|quickStep' <<<"$code"; then
-            echo "dWorldStep only on a key press (dWorldQuickStep by default)"
-        else
-            echo "dWorldStep without constraints in the frames run, or only after user input"
-        fi
+    if grep -qE 'dWorldStep *\(|[.>]step *\(' <<<"$code"; then
+        return
+    elif ! grep -q dsSimulationLoop <<<"$code"; then
+        echo "not a simulation (a test of ODE's internals without a world step or window)"
     elif grep -qE 'dWorldQuickStep|quickStep' <<<"$code"; then
         echo "uses only dWorldQuickStep (the iterative solver; ode-bpp replaces the LCP of dWorldStep)"
     else
-        echo "no dynamics stepped (collision or geometry only)"
+        echo "steps no dynamics (collision or geometry only)"
     fi
 }
 
@@ -80,42 +86,45 @@ list_demos() {
 
 # --- one run -----------------------------------------------------------------------------------
 
-# Lines on stderr that are messages of ODE or of a solver (not drawstuff's banner, not the summary)
+# Messages of ODE, of a solver or of the launcher in a log (not the demo's own output, not the
+# summary), counted, with the values in parentheses dropped so that repeats merge:
+# "107x ODE Message 3: LCP internal error s <= 0 (...);1x ..."
 solver_messages() {
-    grep -E 'ODE (Message|INTERNAL ERROR|Error)|LCP|ode-bpp-run:|^ode-bpp: (warning|error)|Segmentation|Aborted' "$1" \
-        | grep -v '^ode-bpp: solver=' | sort | uniq -c | sort -rn | head -3 \
-        | awk '{ $1 = $1 "x"; print }' | paste -sd ';' | tr -d ',|' || true
+    { grep -E 'ODE (Message|INTERNAL ERROR|Error)|LCP|ode-bpp-run:|^ode-bpp: (warning|error)|Segmentation|Aborted' "$1" || true; } \
+        | sed -E 's/\([^)]*\)/(...)/g' | sort | uniq -c | sort -rn | awk 'NR <= 3' \
+        | awk '{ $1 = $1 "x"; print }' | paste -sd ';' | tr -d ',|'
 }
 
-# run_demo NAME SOLVER: runs it, sets RUN_STATUS, RUN_SECONDS and RUN_SUMMARY (the summary line)
+# The line of a log that says why a run ended badly: the first error, else the last line
+exit_reason() {
+    { grep -m1 -E 'X Error|Segmentation fault|Aborted|INTERNAL ERROR|[Aa]ssert|Killed|terminate called|dsError' "$1" \
+        || grep -v '^ode-bpp' "$1" | grep . | tail -1; } \
+        | tr -d ',|' | cut -c1-120
+}
+
+# run_demo NAME SOLVER: sets RUN_STATUS, RUN_SECONDS, RUN_SUMMARY, RUN_SHOT, RUN_MESSAGES
 run_demo() {
-    local name=$1 solver=$2 program log summary shot start end
+    local name=$1 solver=$2 program log summary start end
     program=$(demo_program "$name")
     log=$OUT/logs/$name.$solver.log
     summary=$WORK/$name.$solver.summary
-    shot=$WORK/$name.$solver.ppm
-    rm -f "$summary" "$shot"
+    RUN_SHOT=$WORK/$name.$solver.ppm
+    rm -f "$summary" "$RUN_SHOT"
     start=$(date +%s.%N)
     RUN_STATUS=0
-    # the demos look for textures relative to nothing (their path is compiled in); run in WORK so
-    # that files some demos write (state.dif) stay out of the way
-    (cd "$WORK" && DS_MAX_FRAMES=$FRAMES DS_SCREENSHOT=$shot ODE_BPP_SUMMARY_FILE=$summary \
+    # in WORK, so that files some demos write (state.dif) stay out of the way
+    (cd "$WORK" && DS_MAX_FRAMES=$FRAMES DS_SCREENSHOT=$RUN_SHOT DS_KEYS=${KEYS[$name]:-} \
+        ODE_BPP_SUMMARY_FILE=$summary \
         timeout --kill-after=10 "$TIMEOUT" xvfb-run -a -s "-screen 0 $SCREEN" \
         "$LAUNCHER" --solver "$solver" "$program" </dev/null >"$log" 2>&1) || RUN_STATUS=$?
     end=$(date +%s.%N)
     RUN_SECONDS=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f", b - a }')
     RUN_SUMMARY=$(grep -m1 '^ode-bpp: solver=' "$summary" 2>/dev/null || true)
-    RUN_SHOT=$shot
     RUN_MESSAGES=$(solver_messages "$log")
 }
 
 field() { tr ' ' '\n' <<<"$1" | sed -n "s/^$2=//p"; }
-
-# The line of a log that says why the demo ended badly: the first error, else the last line
-exit_reason() {
-    { grep -m1 -E 'Error|error|Segmentation|Aborted|assert|Killed' "$1" || grep -v '^ode-bpp' "$1" | grep . | tail -1; } \
-        | tr -d ',|' | cut -c1-120
-}
+ratio() { awk -v a="$1" -v b="$2" -v s="${3:-1}" -v f="$4" 'BEGIN { if (b > 0) printf f, s * a / b }'; }
 
 # --- all demos -------------------------------------------------------------------------------
 
@@ -129,75 +138,86 @@ mapfile -t demos < <(list_demos)
 (( ${#demos[@]} )) || die "no demo programs in $DEMO_DIR"
 say "${#demos[@]} demos, $FRAMES frames each, solvers: ${SOLVERS[*]}; launcher $LAUNCHER; output in $OUT"
 
-echo "demo,solver,status,exit_code,wall_seconds,steps,islands,rows,pivots,fallbacks,failures,solve_seconds,us_per_step,islands_per_step,rows_per_island,messages,screenshot,note" >"$csv"
+echo "demo,solver,keys,status,exit_code,wall_seconds,steps,islands,rows,pivots,fallbacks,failures,solve_seconds,us_per_step,islands_per_step,rows_per_island,messages,screenshot,note" >"$csv"
 
-declare -A result       # result[demo.solver.key]
+declare -A result       # result[DEMO.SOLVER.KEY]
+declare -A skipped      # skipped[DEMO] = reason it was not run
 i=0
 for name in "${demos[@]}"; do
     i=$((i + 1))
+    reason=$(reason_not_run "$name")
+    if [[ -n "$reason" && "${ODE_DEMOS_ALL:-0}" != 1 ]]; then
+        skipped[$name]=$reason
+        echo "$name,,,not-run,,,,,,,,,,,,,,,$reason" >>"$csv"
+        say "($i/${#demos[@]}) $name: not run: $reason"
+        continue
+    fi
     for solver in "${SOLVERS[@]}"; do
         run_demo "$name" "$solver"
         steps=$(field "$RUN_SUMMARY" steps); steps=${steps:-0}
-        islands=$(field "$RUN_SUMMARY" islands); rows=$(field "$RUN_SUMMARY" rows)
-        pivots=$(field "$RUN_SUMMARY" pivots); fallbacks=$(field "$RUN_SUMMARY" fallbacks)
-        failures=$(field "$RUN_SUMMARY" failures); seconds=$(field "$RUN_SUMMARY" solve_seconds)
-        # ok: the solver was exercised (a demo may still exit badly afterwards: see exit_code, note)
-        if (( steps > 0 && ${islands:-0} > 0 )); then status=ok
+        islands=$(field "$RUN_SUMMARY" islands); islands=${islands:-0}
+        rows=$(field "$RUN_SUMMARY" rows); pivots=$(field "$RUN_SUMMARY" pivots)
+        fallbacks=$(field "$RUN_SUMMARY" fallbacks); failures=$(field "$RUN_SUMMARY" failures)
+        seconds=$(field "$RUN_SUMMARY" solve_seconds)
+        # ok: the solver was exercised (a demo may still end badly afterwards: exit_code, note)
+        if (( steps > 0 && islands > 0 )); then status=ok
         elif (( RUN_STATUS == 124 || RUN_STATUS == 137 )); then status=timeout
         elif (( RUN_STATUS != 0 )); then status=failed
         elif [[ -z "$RUN_SUMMARY" ]]; then status=no-summary
         else status=not-exercised; fi
-        us=""; ips=""; rpi=""
-        if (( steps > 0 )); then
-            us=$(awk -v s="$seconds" -v n="$steps" 'BEGIN { printf "%.1f", 1e6 * s / n }')
-            ips=$(awk -v i="$islands" -v n="$steps" 'BEGIN { printf "%.2f", i / n }')
-            rpi=$(awk -v r="$rows" -v i="$islands" 'BEGIN { printf "%.1f", (i > 0 ? r / i : 0) }')
-        fi
+        us=$(ratio "${seconds:-0}" "$steps" 1e6 %.1f)
+        ips=$(ratio "$islands" "$steps" 1 %.2f)
+        rpi=$(ratio "${rows:-0}" "$islands" 1 %.1f)
         png=""
-        if [[ -s "$RUN_SHOT" ]]; then
-            # one screenshot per demo: the last solver's (bpp by default) replaces the earlier ones
-            convert "$RUN_SHOT" "$OUT/png/$name.png" && png=png/$name.png
-        fi
+        # one screenshot per demo: the last solver's (bpp by default) replaces the earlier ones
+        if [[ -s "$RUN_SHOT" ]] && convert "$RUN_SHOT" "$OUT/png/$name.png"; then png=png/$name.png; fi
         note=""
         if (( RUN_STATUS != 0 )); then
             note="exit $RUN_STATUS: $(exit_reason "$OUT/logs/$name.$solver.log")"
-            [[ "$solver" != "${SOLVERS[0]}" && "${result[$name.${SOLVERS[0]}.exit]}" == "$RUN_STATUS" ]] \
-                && note="$note (the same with ${SOLVERS[0]}: a problem of the demo or of ODE, not of the solver)"
-        elif [[ "$status" != ok ]]; then
-            note=$(reason_not_exercised "$name")
+            [[ "$solver" != "${SOLVERS[0]}" && "${result[$name.${SOLVERS[0]}.exit]:-}" == "$RUN_STATUS" ]] \
+                && note="$note (the same with ${SOLVERS[0]}: the demo or ODE, not the solver)"
+        elif [[ "$status" == not-exercised ]]; then
+            note=$(reason_not_run "$name")
+            [[ -n "$note" ]] || note="no world step with constraints in $FRAMES frames"
             (( steps > 0 )) && note="dWorldStep on bodies without joints or contacts: no MLCP to solve"
         fi
-        echo "$name,$solver,$status,$RUN_STATUS,$RUN_SECONDS,$steps,${islands:-},${rows:-},${pivots:-},${fallbacks:-},${failures:-},${seconds:-},$us,$ips,$rpi,$RUN_MESSAGES,$png,$note" >>"$csv"
-        for key in status steps islands rows pivots failures us ips rpi png note; do
+        keys=${KEYS[$name]:-}
+        echo "$name,$solver,$keys,$status,$RUN_STATUS,$RUN_SECONDS,$steps,$islands,${rows:-},${pivots:-},${fallbacks:-},${failures:-},${seconds:-},$us,$ips,$rpi,$RUN_MESSAGES,$png,$note" >>"$csv"
+        for key in status steps islands rows pivots failures us ips rpi png note keys; do
             result[$name.$solver.$key]=${!key}
         done
         result[$name.$solver.exit]=$RUN_STATUS
         result[$name.$solver.messages]=$RUN_MESSAGES
-        say "($i/${#demos[@]}) $name $solver: $status, ${RUN_SECONDS}s, $steps steps${us:+, $us us/step}${failures:+, $failures failures}${RUN_MESSAGES:+, messages: $RUN_MESSAGES}"
+        say "($i/${#demos[@]}) $name ${solver}${keys:+ (keys $keys)}: $status, ${RUN_SECONDS}s, $steps steps${us:+, $us us/step}${failures:+, $failures failures}${RUN_MESSAGES:+, messages: $RUN_MESSAGES}${note:+; $note}"
     done
 done
 
 # --- the markdown report -----------------------------------------------------------------------
 
 ref=${SOLVERS[0]} alt=${SOLVERS[-1]}
+exercised() { [[ "${result[$1.$alt.status]:-}" == ok || "${result[$1.$ref.status]:-}" == ok ]]; }
 {
     echo "# ODE's demos on ode-bpp"
     echo
-    echo "Each demo of ODE $(cut -d' ' -f3 "$BUILD/ode-src/.fetched" 2>/dev/null || echo 0.16.2) (Debian's source, ode/demo), unchanged, run headless"
-    echo "under Xvfb for $FRAMES frames through \`ode-bpp-run --solver $ref\` and \`--solver $alt\`."
-    echo "Solve time is the wall time inside the MLCP solver per world step with constraints"
-    echo "(solve_seconds / steps of the ode-bpp summary line); pivots per step for $alt."
+    echo "ODE $(cut -d' ' -f3 "$BUILD/ode-src/.fetched" 2>/dev/null || echo 0.16.2)'s demos (Debian's source, ode/demo), unchanged, each run headless under"
+    echo "Xvfb for $FRAMES frames through \`ode-bpp-run --solver $ref\` and \`--solver $alt\`."
+    echo "µs/step: wall time inside the MLCP solver per world step (solve_seconds / steps of the"
+    echo "summary line); rows/island: mean island size; failures: solves the world step handed to"
+    echo "ODE's Dantzig; messages: ODE's and the solvers' messages on stderr."
     echo
-    echo "| demo | steps | islands/step | rows/island | $ref µs/step | $alt µs/step | $alt pivots/step | failures ($ref/$alt) | messages | notes | screenshot |"
-    echo "|---|---:|---:|---:|---:|---:|---:|---|---|---|---|"
+    echo "| demo | keys | steps | islands/step | rows/island | $ref µs/step | $alt µs/step | $alt pivots/step | failures $ref/$alt | messages | notes | screenshot |"
+    echo "|---|---|---:|---:|---:|---:|---:|---:|---|---|---|---|"
     for name in "${demos[@]}"; do
-        [[ "${result[$name.$alt.status]}" == ok || "${result[$name.$ref.status]}" == ok ]] || continue
+        exercised "$name" || continue
         steps=${result[$name.$alt.steps]}
-        pps=$(awk -v p="${result[$name.$alt.pivots]:-0}" -v n="$steps" 'BEGIN { if (n > 0) printf "%.1f", p / n }')
-        msgs="${result[$name.$ref.messages]}${result[$name.$ref.messages]:+ ($ref)}${result[$name.$alt.messages]:+ }${result[$name.$alt.messages]}${result[$name.$alt.messages]:+ ($alt)}"
-        shot=${result[$name.$alt.png]:-${result[$name.$ref.png]}}
+        pps=$(ratio "${result[$name.$alt.pivots]:-0}" "$steps" 1 %.1f)
+        msgs=""
+        for solver in "$ref" "$alt"; do
+            [[ -n "${result[$name.$solver.messages]}" ]] && msgs+="${msgs:+ }$solver: ${result[$name.$solver.messages]}"
+        done
         notes=${result[$name.$alt.note]:-${result[$name.$ref.note]}}
-        echo "| $name | $steps | ${result[$name.$alt.ips]} | ${result[$name.$alt.rpi]} | ${result[$name.$ref.us]} | ${result[$name.$alt.us]} | $pps | ${result[$name.$ref.failures]:-?}/${result[$name.$alt.failures]:-?} | ${msgs:-none} | ${notes} | ${shot:+[png]($shot)} |"
+        shot=${result[$name.$alt.png]:-${result[$name.$ref.png]}}
+        echo "| $name | ${result[$name.$alt.keys]} | $steps | ${result[$name.$alt.ips]} | ${result[$name.$alt.rpi]} | ${result[$name.$ref.us]} | ${result[$name.$alt.us]} | $pps | ${result[$name.$ref.failures]:-?}/${result[$name.$alt.failures]:-?} | ${msgs:-none} | $notes | ${shot:+[png]($shot)} |"
     done
     echo
     echo "## Demos that do not exercise ode-bpp"
@@ -205,10 +225,15 @@ ref=${SOLVERS[0]} alt=${SOLVERS[-1]}
     echo "| demo | outcome | reason |"
     echo "|---|---|---|"
     for name in "${demos[@]}"; do
-        [[ "${result[$name.$alt.status]}" == ok || "${result[$name.$ref.status]}" == ok ]] && continue
-        echo "| $name | ${result[$name.$alt.status]} | ${result[$name.$alt.note]} |"
+        exercised "$name" && continue
+        if [[ -n "${skipped[$name]:-}" ]]; then
+            echo "| $name | not run | ${skipped[$name]} |"
+        else
+            echo "| $name | ${result[$name.$alt.status]} | ${result[$name.$alt.note]} |"
+        fi
     done
 } >"$md"
 
-ok=0; for name in "${demos[@]}"; do [[ "${result[$name.$alt.status]}" == ok ]] && ok=$((ok + 1)); done
+ok=0
+for name in "${demos[@]}"; do [[ "${result[$name.$alt.status]:-}" == ok ]] && ok=$((ok + 1)); done
 say "done: $ok of ${#demos[@]} demos stepped with constraints on $alt; table in $md, data in $csv"

@@ -1,3 +1,4 @@
+# shellcheck shell=bash disable=SC2034  # RUN, PROGRAMS, STATUS are for the sourcing tests
 # Shared by tests/shell/launcher_*.sh: the launcher under test, a scratch directory, and helpers
 # to run a command capturing its stdout, stderr and exit status.
 : "${ODE_BPP_BINARY_DIR:?set by ctest (tests/CMakeLists.txt)}"

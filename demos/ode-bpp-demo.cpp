@@ -3,7 +3,7 @@
 // solve time, pivots, residual, cond(A), mass ratio.
 //
 //   ode-bpp-demo SCENE [--solver NAME] [--seconds S] [--cfm X | --compliance C] [--csv FILE]
-//                [--capture DIR [--capture-every K]] [--cond-every N] [--quiet]
+//                [--capture DIR [--capture-every K]] [--cond-every N] [--friction MODE] [--quiet]
 //   ode-bpp-demo SCENE --compare dantzig,bpp [...]
 //   ode-bpp-demo --list
 // SCENE "paper" runs the paper's six scenes one after the other.
@@ -29,6 +29,7 @@
 #include <unistd.h>
 
 #include "ode_bpp/io.h"
+#include "ode_bpp/ode.h"
 #include "ode_bpp/residuals.h"
 #include "scenes/paper_scenes.h"
 #include "scenes/scene.h"
@@ -57,6 +58,7 @@ struct Args {
     std::string capture_dir;
     int capture_every = 1;
     int cond_every = 30;
+    ode_bpp::FrictionMode friction = ode_bpp::FrictionMode::Frozen;
     bool quiet = false;
     bool list = false;
 };
@@ -74,7 +76,8 @@ std::vector<std::string> split_commas(const std::string& s) {
 void print_usage(FILE* out) {
     std::fprintf(out,
                  "usage: ode-bpp-demo SCENE [--solver NAME] [--seconds S] [--cfm X | --compliance C]\n"
-                 "                    [--csv FILE] [--capture DIR [--capture-every K]] [--cond-every N] [--quiet]\n"
+                 "                    [--csv FILE] [--capture DIR [--capture-every K]] [--cond-every N]\n"
+                 "                    [--friction MODE] [--quiet]\n"
                  "       ode-bpp-demo SCENE --compare NAME,NAME[,...] [same options]\n"
                  "       ode-bpp-demo --list\n"
                  "  --solver      MLCP solver inside dWorldStep (default bpp)\n"
@@ -83,6 +86,7 @@ void print_usage(FILE* out) {
                  "  --csv         one row per island per step\n"
                  "  --capture     writes every island's MLCP (every K-th step) into DIR\n"
                  "  --cond-every  estimate cond(A) of the largest island every N steps (default 30; 0: never)\n"
+                 "  --friction    frozen|consistent: friction mode of ode-bpp's solvers (default frozen)\n"
                  "scenes: paper (the six below, in turn)");
     for (const std::string& s : scene_names()) std::fprintf(out, " %s", s.c_str());
     std::fprintf(out, "\nsolvers: %s\n", dListMLCPSolvers());
@@ -133,6 +137,12 @@ Args parse_args(int argc, char** argv) {
         else if (arg == "--capture") a.capture_dir = value();
         else if (arg == "--capture-every") a.capture_every = static_cast<int>(parse_number(arg, value()));
         else if (arg == "--cond-every") a.cond_every = static_cast<int>(parse_number(arg, value()));
+        else if (arg == "--friction") {
+            const std::string mode = value();
+            const auto friction = ode_bpp::friction_from_string(mode);
+            if (!friction) usage_error("unknown friction mode '" + mode + "' (frozen or consistent)");
+            a.friction = *friction;
+        }
         else if (arg == "-h" || arg == "--help") { print_usage(stdout); std::exit(0); }
         else if (!arg.empty() && arg[0] == '-') usage_error("unknown option " + arg);
         else positional.push_back(arg);
@@ -356,6 +366,7 @@ struct RunOptions {
     bool quiet = false;
     std::string capture_dir;
     int capture_every = 1;
+    ode_bpp::FrictionMode friction = ode_bpp::FrictionMode::Frozen;
     std::ofstream* csv = nullptr;
 };
 
@@ -439,6 +450,9 @@ RunResult run_scene(const std::string& name, const RunOptions& opt) {
     std::unique_ptr<Scene> scene = make_scene(name);
     run.paper = scene->paper_table_two();
     SceneWorld w(opt.params);
+    ode_bpp::WorldSettings settings;
+    settings.options.friction = opt.friction;
+    ode_bpp::set_world_settings(w.world(), settings);
     scene->build(w);
     Recorder rec;
     rec.capture_dir = opt.capture_dir;
@@ -542,6 +556,7 @@ int main(int argc, char** argv) {
             opt.quiet = args.quiet;
             opt.capture_dir = args.capture_dir;
             opt.capture_every = args.capture_every;
+            opt.friction = args.friction;
             opt.csv = csv.is_open() ? &csv : nullptr;
             runs.push_back(run_scene(scene, opt));
             if (!runs.back().capture_error.empty()) {

@@ -27,6 +27,29 @@ constexpr double kLastShift = 1e-6;
 constexpr double kContinuationStart = 1e-4;
 constexpr double kContinuationSpan = 1e-8;
 
+/// Rescue continuation (solve_fixed), deltas relative to max_i A_ii. On the captured ODE frames
+/// (winch, forklift, parkour at CFM 1e-10 and 6e-7) block pivoting from a warm start converged
+/// on A + 1e-4 max diag I in 3-8 steps, while the unregularized problems cycled between index sets
+/// whose A_FF hold nearly redundant contact rows (x jumping by 1e4-1e6 from step to step).
+constexpr double kRescueStart = 1e-4;
+/// Not even the first stage converged: more regularization, x10 per try, up to this.
+constexpr double kRescueCeiling = 0.1;
+/// delta_{k+1} = delta_k * ratio. A stage that converges in one step squares the ratio (down to
+/// kRescueMinRatio); one that stalls retries from the last converged delta with sqrt(ratio), and
+/// the rescue gives up once the ratio passes kRescueMaxRatio (the index set would not follow).
+constexpr double kRescueFirstRatio = 0.1;
+constexpr double kRescueMinRatio = 1e-6;
+constexpr double kRescueMaxRatio = 0.9;
+/// Below this delta the next stage is the target itself: on the measured frames no stage under
+/// 1e-8 max diag changed the index set any more (each converged in its first step).
+constexpr double kRescueFloor = 1e-12;
+/// A stage has stalled when its least count of infeasible rows has not fallen for murty_after +
+/// kMurtyPatience steps: Murty's phase gets that many single pivots. A small delta step changes
+/// few rows, so a stage either converges in a few steps or has met the cycling of the plain
+/// problem (measured: converged stages took 1-8 steps; murty_after 3 with this patience left
+/// fewer winch solves over budget than murty_after 5 or 10).
+constexpr int kMurtyPatience = 2;
+
 class BppDriver {
 public:
     BppDriver(const Problem& p, const SymmetricRows& A, const Options& o) : p_(p), A_original_(A), o_(o) {
@@ -102,10 +125,11 @@ private:
         return solve_fixed(states, x);
     }
 
-    /// Outer loop on the friction bounds (FrictionBoundUpdate: damped, Anderson-accelerated),
-    /// each round a fixed-bound solve warm-started from the last; bounds never move inside the
-    /// pivot loop (a prototype that did so diverged). Done when every bound is within its row's
-    /// x-tolerance of mu |x_normal|, so the answer solves the MLCP with bounds from its own normals.
+    /// Outer loop on the friction bounds (FrictionBoundUpdate: damped, Anderson-accelerated, the
+    /// damping halved while the bound gap grows), each round a fixed-bound solve warm-started from
+    /// the last; bounds never move inside the pivot loop (a prototype that did so diverged). Done
+    /// when every bound is within tolerance of mu |x_normal| (friction_consistent), so the answer
+    /// solves the MLCP with bounds from its own normals.
     bool solve_consistent(std::vector<RowState>& states, std::vector<double>& x) {
         if (!solve_frozen(states, x)) return false;
         if (friction_rows_.empty()) return true;
@@ -147,32 +171,115 @@ private:
         }
     }
 
-    /// Every friction bound within the row's x-tolerance tol (|A||x| + |b|)_i / A_ii of its target.
+    /// Every friction bound within tolerance of its target: the larger of the row's own x-tolerance
+    /// tol (|A||x| + |b|)_i / A_ii and |mu| times its normal's, since the target mu |x_n| is known
+    /// only to within the latter (a friction row at a small bound has a small scale of its own,
+    /// below the rounding of a large normal impulse: the bounds then stall at that rounding).
     bool friction_consistent(const std::vector<double>& target, const std::vector<double>& x) const {
         std::vector<double> scale;
         Ap_.abs_multiply(x, lcp_.shift, scale);
+        const auto x_tolerance = [&](int i) {
+            return o_.tolerance * (scale[i] + std::abs(lcp_.b[i])) / (Ap_.diag(i) + lcp_.shift);
+        };
         for (std::size_t k = 0; k < target.size(); ++k) {
             const int i = friction_rows_[k];
-            const double x_tol = o_.tolerance * (scale[i] + std::abs(lcp_.b[i])) / (Ap_.diag(i) + lcp_.shift);
-            if (std::abs(target[k] - lcp_.hi[i]) > x_tol) return false;
+            const double normal_tolerance = std::isfinite(mu_[k]) ? std::abs(mu_[k]) * x_tolerance(normal_of_[k]) : 0.0;
+            if (std::abs(target[k] - lcp_.hi[i]) > std::max(x_tolerance(i), normal_tolerance)) return false;
         }
         return true;
     }
 
-    // ---- one fixed-bound solve: continuation, then regularize on breakdown ---------------
+    // ---- one fixed-bound solve: plain attempt, rescue, regularize on breakdown ------------
     /// False only when even the largest regularization breaks down (NotSpd).
     bool solve_fixed(std::vector<RowState>& states, std::vector<double>& x) {
         const std::vector<RowState> start = states;
         if (!continuation_done_) run_continuation(states, x);
         for (;;) {
             if (prepare(shift_)) {
-                const LoopOutcome outcome = pivot_fixed_bounds(lcp_, *solver_, settings_, states, x, counters_);
+                const LoopOutcome outcome = solve_at_target(start, states, x);
                 if (outcome == LoopOutcome::MaxIterations) budget_exhausted_ = true;
                 if (outcome != LoopOutcome::Breakdown) return true;
             }
             if (!raise_shift()) return false;
             states = start;
         }
+    }
+
+    /// One fixed-bound solve on A + shift_ I (prepared) within settings_.max_pivots steps: the
+    /// plain loop gets Options::rescue_after steps; if it has not converged by then, the rescue
+    /// continuation starts afresh from `start` (the warm start) with the rest of the budget, and
+    /// should it give up, the plain loop resumes from its least infeasible index set.
+    /// Returns Converged, MaxIterations or Breakdown.
+    LoopOutcome solve_at_target(const std::vector<RowState>& start, std::vector<RowState>& states,
+                                std::vector<double>& x) {
+        const int first = counters_.pivots;
+        const auto left = [&] { return settings_.max_pivots - (counters_.pivots - first); };
+        const bool rescue_allowed = o_.rescue_after > 0;
+        PivotSettings plain = settings_;
+        if (rescue_allowed) plain.max_pivots = std::min(settings_.max_pivots, o_.rescue_after);
+        LoopOutcome outcome = pivot_fixed_bounds(lcp_, *solver_, plain, states, x, counters_);
+        if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
+        outcome = rescue(start, states, x, left());
+        if (outcome != LoopOutcome::Stalled) return outcome;
+        if (!prepare(shift_)) return LoopOutcome::Breakdown;
+        if (left() <= 0) return LoopOutcome::MaxIterations;
+        PivotSettings rest = settings_;
+        rest.max_pivots = left();
+        return pivot_fixed_bounds(lcp_, *solver_, rest, states, x, counters_);
+    }
+
+    /// Rescue continuation (NOTES: what made BPP converge at CFM 1e-10): solves with A + delta I,
+    /// delta falling from kRescueStart * max diag to the target shift_, the first stage warm-started
+    /// from `start`, every later one from the last converged stage's index set, with adaptive
+    /// steps (constants above). Nearly redundant contact rows make A_FF nearly singular at
+    /// the target, so block pivots there swing x wildly; A + delta I bounds that swing, and
+    /// delta shrinks only as fast as the index set can follow. At most `budget` steps.
+    /// Returns Converged (states, x: the answer on A + shift_ I), Breakdown, or Stalled when it
+    /// gives up, leaving states and x as they came in and the solver prepared for another delta.
+    LoopOutcome rescue(const std::vector<RowState>& start, std::vector<RowState>& states, std::vector<double>& x,
+                       int budget) {
+        const std::vector<RowState> entry_states = states;
+        const std::vector<double> entry_x = x;
+        const int first = counters_.pivots;
+        PivotSettings stage = settings_;
+        const int no_stall = 0;
+        stage.stall_after = settings_.murty_after > std::numeric_limits<int>::max() - kMurtyPatience
+                                ? no_stall
+                                : settings_.murty_after + kMurtyPatience;
+        std::vector<RowState> accepted = start, trial;
+        double delta = std::max(shift_, kRescueStart * max_diag_);
+        double accepted_delta = -1;  // none yet
+        double ratio = kRescueFirstRatio;
+        while (counters_.pivots - first < budget) {
+            if (!prepare(delta)) return LoopOutcome::Breakdown;
+            stage.max_pivots = budget - (counters_.pivots - first);
+            trial = accepted;
+            const int before = counters_.pivots;
+            const LoopOutcome outcome = pivot_fixed_bounds(lcp_, *solver_, stage, trial, x, counters_);
+            if (outcome == LoopOutcome::Breakdown) return outcome;
+            if (outcome == LoopOutcome::Converged) {
+                accepted = trial;
+                if (delta == shift_) {
+                    states = accepted;
+                    ++counters_.rescues;
+                    return outcome;
+                }
+                if (accepted_delta > 0 && counters_.pivots - before <= 1) ratio = std::max(ratio * ratio, kRescueMinRatio);
+                accepted_delta = delta;
+            } else if (accepted_delta < 0) {
+                if (delta >= kRescueCeiling * max_diag_) break;
+                delta *= 10;
+                continue;
+            } else {
+                ratio = std::sqrt(ratio);
+                if (ratio > kRescueMaxRatio) break;
+            }
+            delta = accepted_delta * ratio;
+            if (delta < kRescueFloor * max_diag_ || delta <= shift_) delta = shift_;
+        }
+        states = entry_states;
+        x = entry_x;
+        return LoopOutcome::Stalled;
     }
 
     /// Solves with A + delta_k I, delta_k falling geometrically, each stage warm-started from the
@@ -213,6 +320,7 @@ private:
         r.downdate_steps = counters_.downdate_steps;
         r.refactor_steps = counters_.refactor_steps;
         r.accuracy_refactors = counters_.accuracy_refactors;
+        r.rescues = counters_.rescues;
         r.friction_rounds = friction_rounds_;
         r.tight_per_step = counters_.tight_per_step;
         r.factor_error = std::numeric_limits<double>::quiet_NaN();

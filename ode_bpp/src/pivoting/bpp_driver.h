@@ -1,5 +1,6 @@
-// The BPP methods end to end: ordering, factor strategy, friction policy, regularization
-// continuation and the regularize-on-breakdown retry around the pivoting loop.
+// The BPP methods end to end: ordering, factor strategy, friction policy, the rescue
+// continuation of a fixed-bound solve that does not converge plainly (Options::rescue_after), the
+// optional up-front continuation and the regularize-on-breakdown retry around the pivoting loop.
 #pragma once
 
 #include <vector>

@@ -25,10 +25,9 @@ std::vector<double> difference(const std::vector<double>& a, const std::vector<d
 std::vector<double> FrictionBoundUpdate::next(const std::vector<double>& bound, const std::vector<double>& target) {
     const std::size_t m = bound.size();
     const std::vector<double> f = difference(target, bound);
-    std::vector<double> step(m);
-    for (std::size_t k = 0; k < m; ++k) step[k] = damping_ * f[k];
     if (!last_residual_.empty()) {
         if (squared_norm(f) < squared_norm(last_residual_)) {
+            damping_ = std::min(initial_damping_, 2 * damping_);
             bound_differences_.push_back(difference(bound, last_bound_));
             residual_differences_.push_back(difference(f, last_residual_));
             if (static_cast<int>(bound_differences_.size()) > kDepth) {
@@ -36,10 +35,13 @@ std::vector<double> FrictionBoundUpdate::next(const std::vector<double>& bound, 
                 residual_differences_.pop_front();
             }
         } else {
+            damping_ = std::max(kMinDamping, 0.5 * damping_);
             bound_differences_.clear();
             residual_differences_.clear();
         }
     }
+    std::vector<double> step(m);
+    for (std::size_t k = 0; k < m; ++k) step[k] = damping_ * f[k];
     const int depth = static_cast<int>(residual_differences_.size());
     if (depth > 0) {
         Eigen::MatrixXd dF(m, depth);

@@ -28,6 +28,7 @@ public:
         int least_count = n_ + 1;        // Júdice-Pires: fewest infeasible rows seen so far
         int block_steps_left = settings_.murty_after;
         bool in_murty = false;
+        int last_progress = 0;           // step of the latest new least count
         best_count_ = n_ + 1;
         for (int step = 0; step < settings_.max_pivots; ++step) {
             if (!solve_step(states, x)) return LoopOutcome::Breakdown;
@@ -39,9 +40,13 @@ public:
             }
             if (inf.count() < least_count) {
                 least_count = inf.count();
+                last_progress = step;
                 block_steps_left = settings_.murty_after;
                 in_murty = false;
                 block_pivot(inf, states);
+            } else if (settings_.stall_after > 0 && step - last_progress >= settings_.stall_after) {
+                restore_best(states, x);
+                return LoopOutcome::Stalled;
             } else if (block_steps_left > 0) {
                 --block_steps_left;
                 block_pivot(inf, states);

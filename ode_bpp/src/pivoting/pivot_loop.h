@@ -15,6 +15,9 @@ struct PivotSettings {
     int murty_after = 10;    ///< block steps without a new minimum of infeasible rows before Murty
     double tolerance = 1e-9; ///< relative, scaled per row (see classify in pivot_loop.cpp)
     bool record_steps = true;
+    /// Steps without a new least count of infeasible rows after which the run gives up with
+    /// LoopOutcome::Stalled (in the block and in Murty's phase alike); 0: never.
+    int stall_after = 0;
 };
 
 /// Counters accumulated over every run of the loop that a solve makes.
@@ -24,12 +27,14 @@ struct PivotCounters {
     int downdate_steps = 0;
     int refactor_steps = 0;
     int accuracy_refactors = 0;  ///< deleted factors rejected by the free-residual check
+    int rescues = 0;             ///< fixed-bound solves finished by the driver's rescue continuation
     std::vector<int> tight_per_step;
 };
 
 enum class LoopOutcome {
     Converged,      ///< no row infeasible: x solves the boxed LCP to the scaled tolerance
     MaxIterations,  ///< budget spent: x is the least infeasible iterate, projected onto the bounds
+    Stalled,        ///< settings.stall_after steps without progress; x and states as for MaxIterations
     Breakdown,      ///< the strategy met a non-positive pivot; x and states are not meaningful
 };
 

@@ -1,0 +1,100 @@
+// bpp converges inside ODE's world step (issue 3, item 4): in its default configuration it must
+// answer at least 99 % of the islands itself, within its pivot budget, at ODE's default CFM 1e-10
+// and at the paper's compliance 1e-8 (CFM = c/h). Two contact-rich scenes: the winch (a chain
+// dragged onto a drum; its contacts are nearly redundant rows, cond(A) ~ 1e9 at CFM 1e-10) and
+// the forklift (wheels, forks and pallet on the ground). The counts are the hook's own
+// (hook_counters: islands, and islands with Status::Converged), cross-checked against ODE's
+// statistics (dWorldGetMLCPStats: islands, and failures handed to ODE's Dantzig).
+// Before the rescue continuation (Options::rescue_after) bpp converged on 71 % of the winch's
+// frames at CFM 1e-10 and on 96 % at compliance 1e-8; the forklift failed on 3 % of its first 10 s.
+#include <gtest/gtest.h>
+#include <ode/mlcp.h>
+
+#include <cmath>
+#include <ostream>
+#include <sstream>
+#include <string>
+
+#include "ode_bpp/ode.h"
+#include "scenes/paper_scenes.h"
+#include "scenes/scene.h"
+
+namespace ode_bpp::scenes {
+namespace {
+
+constexpr double kRequiredRate = 0.99;
+
+struct Case {
+    std::string scene;
+    double seconds;     ///< simulated; long enough to reach the scene's hard phase
+    double compliance;  ///< the paper's c (CFM = c / h), or 0 for ODE's default CFM 1e-10
+};
+
+struct Count {
+    long islands = 0;
+    long converged = 0;
+    int ode_islands = 0;
+    int ode_failures = 0;
+};
+
+Count run(const Case& c) {
+    SceneParams params;
+    params.solver = "bpp";
+    if (c.compliance > 0) params.cfm = cfm_from_compliance(c.compliance, params.step);
+    std::unique_ptr<Scene> scene = make_scene(c.scene);
+    SceneWorld w(params);
+    scene->build(w);
+    const HookCounters before = hook_counters();
+    const long steps = std::lround(c.seconds / params.step);
+    for (long s = 0; s < steps; ++s) {
+        scene->control(w, w.time());
+        if (!w.step()) break;
+    }
+    const HookCounters after = hook_counters();
+    Count n;
+    n.islands = after.islands - before.islands;
+    n.converged = after.converged - before.converged;
+    dMLCPStepStats total{};
+    dWorldGetMLCPStats(w.world(), nullptr, &total);
+    n.ode_islands = total.islands;
+    n.ode_failures = total.failures;
+    forget_world(w.world());
+    return n;
+}
+
+void PrintTo(const Case& c, std::ostream* os) {
+    *os << c.scene << ", " << c.seconds << " s, ";
+    if (c.compliance > 0) *os << "compliance " << c.compliance;
+    else *os << "ODE's default CFM";
+}
+
+class ConvergenceInOde : public ::testing::TestWithParam<Case> {};
+
+TEST_P(ConvergenceInOde, BppAnswersAtLeast99PercentOfTheIslandsItself) {
+    const Case& c = GetParam();
+    const Count n = run(c);
+    ASSERT_GT(n.islands, 0) << "the hook solved no island: is bpp registered?";
+    ASSERT_EQ(n.islands, n.ode_islands) << "the hook and ODE count different islands";
+    const double rate = static_cast<double>(n.converged) / static_cast<double>(n.islands);
+    RecordProperty("islands", std::to_string(n.islands));
+    RecordProperty("converged", std::to_string(n.converged));
+    EXPECT_GE(rate, kRequiredRate) << c.scene << ": " << n.converged << " of " << n.islands
+                                   << " islands converged, " << n.ode_failures << " handed to ODE's Dantzig";
+    EXPECT_LE(n.ode_failures, n.islands - n.converged);
+}
+
+std::string case_name(const ::testing::TestParamInfo<Case>& info) {
+    std::ostringstream name;
+    name << info.param.scene;
+    if (info.param.compliance > 0) name << "_compliance_1e_" << std::lround(-std::log10(info.param.compliance));
+    else name << "_ode_default_cfm";
+    return name.str();
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ConvergenceInOde,
+                         ::testing::Values(Case{"winch", 20, 0}, Case{"winch", 20, 1e-8}, Case{"forklift", 10, 0},
+                                           Case{"forklift", 10, 1e-8}),
+                         case_name);
+
+}  // namespace
+}  // namespace ode_bpp::scenes

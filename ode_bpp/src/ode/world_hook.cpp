@@ -157,17 +157,20 @@ int register_all() {
 }
 
 /// One line on stderr (and in ODE_BPP_SUMMARY_FILE if set) when the process ends, if
-/// ODE_BPP_SUMMARY is set: what ode-bpp-run promises about a launched program.
+/// ODE_BPP_SUMMARY is set and the process stepped a world (ODE_BPP_SUMMARY=always: in any case):
+/// what ode-bpp-run promises about a launched program.
 void print_summary_at_exit() {
     const char* want = std::getenv("ODE_BPP_SUMMARY");
     if (want == nullptr || want[0] == '\0' || std::strcmp(want, "0") == 0) return;
     dMLCPStepStats total{};
     const bool any = dGetMLCPProcessStats(&total) != 0;
+    // helper processes of a launched program (shells, interpreter shims) stay silent unless asked
+    if (!any && total.steps == 0 && std::strcmp(want, "always") != 0) return;
     char line[512];
     std::snprintf(line, sizeof line,
                   "ode-bpp: solver=%s steps=%lu islands=%d rows=%d pivots=%ld fallbacks=%d failures=%d "
                   "solve_seconds=%.6f%s\n",
-                  total.solver != nullptr ? total.solver : "none", total.steps, total.islands, total.rows,
+                  any && total.solver != nullptr ? total.solver : "none", total.steps, total.islands, total.rows,
                   total.pivots, total.fallbacks, total.failures, total.seconds,
                   any ? "" : " (no world step with constraints)");
     std::fputs(line, stderr);

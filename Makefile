@@ -7,7 +7,7 @@ ASAN_DIR   := $(BUILD)/asan
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all deps ode configure build test test-sanitize demo bench fuzz ode-demos install clean distclean
+.PHONY: all deps ode configure build test test-sanitize demo bench bench-report convergence fuzz ode-demos install clean distclean
 
 all: build
 
@@ -66,6 +66,16 @@ bench: build
 	@$(CMAKE_DIR)/bench/bench_kernels --benchmark_out=results/bench_kernels.csv --benchmark_out_format=csv
 	@echo "[bench] Fig. 4: speed-up of deletion over refactoring by % tight (about 1 minute)"
 	@$(CMAKE_DIR)/bench/bench_fig4 --benchmark_out=results/bench_fig4.csv --benchmark_out_format=csv
+
+# Speed against accuracy on one captured corpus: tables 3-4, targets, charts -> results/bench-report/.
+# BENCH_REPORT_ARGS=--quick for a few minutes instead of the paper's 20 s per scene.
+BENCH_REPORT_ARGS ?=
+bench-report: build
+	@bash scripts/bench-report.sh $(CMAKE_DIR) results/bench-report $(BENCH_REPORT_ARGS)
+
+# Convergence of bpp inside ODE per scene and CFM regime (frozen and consistent friction) -> results/convergence/
+convergence: build
+	@bash scripts/convergence.sh $(CMAKE_DIR) results/convergence
 
 # ODE's own demos (ode/demo), unchanged, headless under Xvfb, dantzig vs bpp; results/ode-demos/
 ode-demos: build

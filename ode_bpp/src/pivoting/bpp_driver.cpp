@@ -355,6 +355,7 @@ private:
     }
 
     std::string status_message() const {
+        if (!budget_exhausted_ && !friction_inconsistent_ && shift_ == 0) return {};  // no stream on the hot path
         std::ostringstream m;
         if (budget_exhausted_)
             m << "pivot budget of " << settings_.max_pivots << " steps ran out; x is the least infeasible iterate. ";

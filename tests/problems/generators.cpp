@@ -144,4 +144,65 @@ OwnedProblem chain_mlcp(int links, int contacts, double mass_ratio, double cfm) 
     return p;
 }
 
+OwnedProblem capstan_mlcp(int links, double wrap, double mu, double load_ratio, double cfm) {
+    const double h = 1.0 / 60, g = 9.81, radius = 1.0, thickness = 0.02;
+    const int joint_rows = 2 * (links - 1), rows = joint_rows + 2 * links, dofs = 3 * links;
+    OwnedProblem p = OwnedProblem::zeros("capstan_mlcp", rows);
+    p.nub = joint_rows;
+    p.findex.assign(rows, -1);
+    Mat J = Mat::Zero(rows, dofs);
+    Eigen::VectorXd Minv(dofs), v = Eigen::VectorXd::Zero(dofs), f = Eigen::VectorXd::Zero(dofs);
+    const double step_angle = wrap / links, length = radius * step_angle;
+    std::vector<double> angle(links);
+    // planar velocity of a point at offset r from a body's centre: v + omega * (-r_y, r_x)
+    const auto point_row = [&](int row, int body, const Eigen::Vector2d& dir, const Eigen::Vector2d& r, double sign) {
+        J(row, 3 * body) += sign * dir.x();
+        J(row, 3 * body + 1) += sign * dir.y();
+        J(row, 3 * body + 2) += sign * (r.x() * dir.y() - r.y() * dir.x());
+    };
+    for (int k = 0; k < links; ++k) {
+        angle[k] = std::acos(-1.0) / 2 + wrap / 2 - (k + 0.5) * step_angle;  // from the left over the top
+        const double m = k == links - 1 ? load_ratio : 1.0;
+        Minv.segment<2>(3 * k).setConstant(1 / m);
+        Minv[3 * k + 2] = 12 / (m * length * length);
+        const Eigen::Vector2d tangent(std::sin(angle[k]), -std::cos(angle[k]));  // towards the load
+        v.segment<2>(3 * k) = 0.5 * tangent;  // sliding towards the load
+        f[3 * k + 1] = -m * g;
+    }
+    const auto centre = [&](int k) { return Eigen::Vector2d(std::cos(angle[k]), std::sin(angle[k])) * (radius + thickness); };
+    for (int k = 1; k < links; ++k) {  // planar ball joint between links k-1 and k
+        const double a = angle[k] + step_angle / 2;
+        const Eigen::Vector2d anchor = Eigen::Vector2d(std::cos(a), std::sin(a)) * (radius + thickness);
+        const int row = 2 * (k - 1);
+        for (int axis = 0; axis < 2; ++axis) {
+            const Eigen::Vector2d dir = Eigen::Vector2d::Unit(axis);
+            point_row(row + axis, k, dir, anchor - centre(k), 1.0);
+            point_row(row + axis, k - 1, dir, anchor - centre(k - 1), -1.0);
+        }
+        p.block_row.push_back(row);
+        p.block_body.insert(p.block_body.end(), {k - 1, k});
+    }
+    for (int k = 0; k < links; ++k) {  // contact with the drum: normal, then friction (findex)
+        const Eigen::Vector2d normal(std::cos(angle[k]), std::sin(angle[k]));
+        const Eigen::Vector2d tangent(-normal.y(), normal.x());
+        const Eigen::Vector2d r = -thickness * normal;
+        const int row = joint_rows + 2 * k;
+        point_row(row, k, normal, r, 1.0);
+        point_row(row + 1, k, tangent, r, 1.0);
+        p.lo[row] = 0;
+        p.findex[row + 1] = row;
+        p.hi[row + 1] = mu;
+        p.lo[row + 1] = -mu;
+        p.block_row.push_back(row);
+        p.block_body.insert(p.block_body.end(), {k, -1});
+    }
+    p.block_row.push_back(rows);
+    Mat A = J * Minv.asDiagonal() * J.transpose();
+    A.diagonal().array() += cfm / h;
+    copy_matrix(0.5 * (A + A.transpose()), p);
+    const Eigen::VectorXd rhs = -J * (v / h + Minv.asDiagonal() * f);  // ODE's b (step.cpp)
+    for (int i = 0; i < rows; ++i) p.b[i] = rhs[i];
+    return p;
+}
+
 }  // namespace ode_bpp::problems

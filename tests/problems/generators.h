@@ -27,4 +27,14 @@ OwnedProblem random_boxed_mlcp(int n, int nub, int friction_contacts, double con
 /// gravity and a sliding initial velocity. Carries the block structure (joints, bodies).
 OwnedProblem chain_mlcp(int links, int contacts, double mass_ratio = 100, double cfm = 1e-8);
 
+/// The capstan: a planar chain of `links` bodies (x, y, theta) lying over a fixed drum of radius 1
+/// over `wrap` radians centred on the top, joined by
+/// planar ball joints (2 unbounded rows each), one contact per link with the drum (normal +
+/// one friction row, findex = the normal, coefficient mu), the last link `load_ratio` times
+/// heavier, every link sliding along the drum. Friction raises the normals that bound it
+/// (tension grows like e^(mu * angle) along a wrapped rope), so the map from friction bounds to
+/// normals expands for mu * wrap large enough: bounds iterated outside the pivoting do not converge.
+/// A = J M^-1 J^T + (cfm / h) I with h = 1/60.
+OwnedProblem capstan_mlcp(int links, double wrap, double mu, double load_ratio, double cfm = 1e-8);
+
 }  // namespace ode_bpp::problems

@@ -121,6 +121,11 @@ struct Options {
     /// fewer than 1 %, and a round usually costs a single pivot step.
     int max_friction_rounds = 100;
     double friction_damping = 0.6;
+    /// Consistent friction: first solve with the friction bounds moving with the normals inside
+    /// each pivot step, friction rows at a bound solved together with their normals
+    /// (pivoting/friction_link.h); the outer damped bound updates below only where that fails.
+    /// False: outer damped updates only (ode-bpp 0.1's Consistent mode).
+    bool link_friction = true;
     /// Regularization continuation for nearly singular A: solve with A + delta*I, delta falling
     /// geometrically to 0, each stage warm-started from the last. 0 disables it.
     int continuation_stages = 0;
@@ -146,6 +151,9 @@ struct Result {
     int downdate_steps = 0;       ///< steps whose L_FF came from copying L and deleting rows
     int refactor_steps = 0;       ///< steps whose L_FF came from a (partial) refactorization
     int friction_rounds = 0;      ///< outer bound updates (consistent mode)
+    /// Consistent mode: the linked solve (Options::link_friction) ran; friction_rounds counts
+    /// the outer rounds after it (0 when it alone converged).
+    bool linked_friction = false;
     std::vector<int> tight_per_step;  ///< |T| at each pivot step
     int tight = 0;                ///< |T| at the answer
     std::string fallback;         ///< fallback taken, empty if none ("regularized", "dantzig", ...)

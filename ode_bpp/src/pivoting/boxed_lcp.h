@@ -20,7 +20,16 @@ struct BoxedLcp {
     /// original index, so every strategy pivots alike), or empty for the permuted index.
     std::vector<int> murty_rank;
 
+    /// Consistent friction inside the loop (empty: every bound fixed). Row i with
+    /// friction_normal[i] >= 0 has the bounds -+friction_mu[i] |x[friction_normal[i]]|, moving with
+    /// x; at a bound while its normal is free it is linked, x_i = +-mu_i x_normal, and each step
+    /// solves the linked rows with the free ones (pivoting/friction_link.h). lo/hi of these rows
+    /// are only the starting bounds. n entries each; mu finite and >= 0.
+    std::vector<int> friction_normal;
+    std::vector<double> friction_mu;
+
     int n() const { return A->n(); }
+    bool has_moving_bounds() const { return !friction_normal.empty(); }
     /// A row with lo == hi is pinned at that value: always tight and never infeasible (ODE's
     /// Dantzig treats lo = hi = 0 friction rows the same way).
     bool is_pinned(int i) const { return lo[i] == hi[i]; }

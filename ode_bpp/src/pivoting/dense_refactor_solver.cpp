@@ -34,6 +34,16 @@ public:
         return FactorOutcome::Refactored;
     }
 
+    void solve_again(std::vector<double>& x) override {
+        const int nf = static_cast<int>(free_.size());
+        for (int k = 0; k < nf; ++k) rhs_[k] = x[free_[k]];
+        for (int i = 0; i < A_.n(); ++i)
+            if (position_[i] < 0) x[i] = 0;
+        if (nf == 0) return;
+        llt_.solveInPlace(rhs_);
+        for (int k = 0; k < nf; ++k) x[free_[k]] = rhs_[k];
+    }
+
 private:
     /// A_FF (+ shift I) into dense_, free rows in increasing permuted order; returns |F|.
     int gather_free(const std::vector<char>& tight) {

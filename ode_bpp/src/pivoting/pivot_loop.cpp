@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "pivoting/friction_link.h"
+
 namespace ode_bpp::pivoting {
 
 namespace {
@@ -75,31 +77,50 @@ private:
             RowState& s = states[i];
             if (s != RowState::AtLo && s != RowState::AtHi) s = RowState::Free;  // also garbage values
             if (lcp_.always_free[i]) s = RowState::Free;
-            else if (lcp_.is_pinned(i)) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
-            else if (s == RowState::AtLo && std::isinf(lcp_.lo[i])) s = RowState::Free;
-            else if (s == RowState::AtHi && std::isinf(lcp_.hi[i])) s = RowState::Free;
+            else if (pinned(i)) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
+            else if (s == RowState::AtLo && std::isinf(lo_[i])) s = RowState::Free;
+            else if (s == RowState::AtHi && std::isinf(hi_[i])) s = RowState::Free;
         }
     }
 
     /// One pivot step: x_T at its bounds (Alg. 1 lines 6-7), x_F from Eq. 6, then w (line 9).
+    /// With moving friction bounds, linked rows (friction_link.h) are solved with x_F.
     bool solve_step(const std::vector<RowState>& states, std::vector<double>& x) {
         tight_.assign(static_cast<std::size_t>(n_), 0);
         x.assign(static_cast<std::size_t>(n_), 0.0);
+        if (lcp_.has_moving_bounds()) bounds_from_tight_normals(states);
+        linked_.clear();
         int tight_count = 0;
         for (int i = 0; i < n_; ++i)
             if (states[i] != RowState::Free) {
                 tight_[i] = 1;
-                x[i] = tight_value(lcp_, i, states[i]);
                 ++tight_count;
+                if (is_linked(i, states)) linked_.push_back(i);  // x_i = 0 until solved with x_F
+                else x[i] = value_at(i, states[i]);
             }
+        ++counters_.pivots;
+        if (settings_.record_steps) counters_.tight_per_step.push_back(tight_count);
+        if (!solve_free_rows(x)) return false;
+        if (linked_.empty()) return true;
+        if (!solve_linked_rows(lcp_, solver_, linked_, states, tight_, x)) {
+            // singular link: keep the linked rows at the previous iterate's bounds for this step
+            for (int i : linked_) x[i] = value_at(i, states[i]);
+            linked_.clear();
+            if (!solve_free_rows(x)) return false;
+        }
+        bounds_from_free_normals(x);
+        refresh_w(x);
+        return true;
+    }
+
+    /// x_F from Eq. 6 with x_T as given in x (linked rows 0), with the loss-of-accuracy guard.
+    bool solve_free_rows(std::vector<double>& x) {
         lcp_.A->multiply(x, lcp_.shift, Ax_);  // A_FT x_T on the free rows (x_F = 0 here)
         for (int i = 0; i < n_; ++i)
             if (!tight_[i]) rhs_x_[i] = lcp_.b[i] - Ax_[i];
-        ++counters_.pivots;
-        if (settings_.record_steps) counters_.tight_per_step.push_back(tight_count);
         FactorOutcome outcome = solve_free(x, /*fresh=*/false);
         if (outcome == FactorOutcome::Breakdown) return false;
-        if (outcome == FactorOutcome::Deleted && free_residual() > accuracy_limit()) {
+        if (outcome == FactorOutcome::Deleted && linked_.empty() && free_residual() > accuracy_limit()) {
             // MuJoCo-style loss-of-accuracy guard: a deleted factor that misses Eq. 6 by more
             // than a fresh factor would is replaced by a refactorization for this step.
             ++counters_.accuracy_refactors;
@@ -110,6 +131,45 @@ private:
         return true;
     }
 
+    /// A friction row at a bound whose normal is free: its value moves with the normal.
+    bool is_linked(int i, const std::vector<RowState>& states) const {
+        return lcp_.has_moving_bounds() && lcp_.friction_normal[i] >= 0 && states[lcp_.friction_normal[i]] == RowState::Free;
+    }
+
+    /// Bounds -+mu |x_n| of friction rows whose normal is tight, from the normal's bound value.
+    void bounds_from_tight_normals(const std::vector<RowState>& states) {
+        for (int i = 0; i < n_; ++i) {
+            const int normal = lcp_.friction_normal[i];
+            if (normal >= 0 && states[normal] != RowState::Free) set_friction_bound(i, value_at(normal, states[normal]));
+        }
+    }
+
+    /// Bounds -+mu |x_n| of friction rows whose normal is free, from the step's x.
+    void bounds_from_free_normals(const std::vector<double>& x) {
+        for (int i = 0; i < n_; ++i) {
+            const int normal = lcp_.friction_normal[i];
+            if (normal >= 0 && !tight_[normal]) set_friction_bound(i, x[normal]);
+        }
+    }
+
+    void set_friction_bound(int i, double normal_value) {
+        hi_[i] = lcp_.friction_mu[i] * std::abs(normal_value);
+        lo_[i] = -hi_[i];
+    }
+
+    /// w = (A + shift I) x - b and the row scales (|A||x| + |b|)_i.
+    void refresh_w(const std::vector<double>& x) {
+        lcp_.A->multiply(x, lcp_.shift, w_);
+        lcp_.A->abs_multiply(x, lcp_.shift, scale_);
+        for (int i = 0; i < n_; ++i) {
+            w_[i] -= lcp_.b[i];
+            scale_[i] += std::abs(lcp_.b[i]);
+        }
+    }
+
+    bool pinned(int i) const { return lo_[i] == hi_[i]; }
+    double value_at(int i, RowState s) const { return s == RowState::AtLo ? lo_[i] : hi_[i]; }
+
     /// Solves for x_F with the right-hand side kept in rhs_x_, then refreshes w and the scales.
     FactorOutcome solve_free(std::vector<double>& x, bool fresh) {
         x_free_ = rhs_x_;  // the strategy overwrites its argument
@@ -117,12 +177,7 @@ private:
         if (outcome == FactorOutcome::Breakdown) return outcome;
         for (int i = 0; i < n_; ++i)
             if (!tight_[i]) x[i] = x_free_[i];
-        lcp_.A->multiply(x, lcp_.shift, w_);
-        lcp_.A->abs_multiply(x, lcp_.shift, scale_);
-        for (int i = 0; i < n_; ++i) {
-            w_[i] -= lcp_.b[i];
-            scale_[i] += std::abs(lcp_.b[i]);
-        }
+        refresh_w(x);
         return outcome;
     }
 
@@ -143,7 +198,7 @@ private:
     Infeasibility classify(const std::vector<RowState>& states, const std::vector<double>& x) const {
         Infeasibility inf;
         for (int i = 0; i < n_; ++i) {
-            if (lcp_.is_pinned(i)) continue;
+            if (pinned(i)) continue;
             const double diag = lcp_.A->diag(i) + lcp_.shift;
             const double w_tol = settings_.tolerance * scale_[i];
             const double x_tol = w_tol / diag;
@@ -151,8 +206,8 @@ private:
             RowState to = states[i];
             switch (states[i]) {
                 case RowState::Free:
-                    if (x[i] < lcp_.lo[i] - x_tol) { excess = (lcp_.lo[i] - x[i]) * diag; to = RowState::AtLo; }
-                    else if (x[i] > lcp_.hi[i] + x_tol) { excess = (x[i] - lcp_.hi[i]) * diag; to = RowState::AtHi; }
+                    if (x[i] < lo_[i] - x_tol) { excess = (lo_[i] - x[i]) * diag; to = RowState::AtLo; }
+                    else if (x[i] > hi_[i] + x_tol) { excess = (x[i] - hi_[i]) * diag; to = RowState::AtHi; }
                     break;
                 case RowState::AtLo:
                     if (w_[i] < -w_tol) { excess = -w_[i]; to = RowState::Free; }
@@ -194,6 +249,10 @@ private:
         best_inf_ = inf;
         best_x_ = x;
         best_w_ = w_;
+        if (lcp_.has_moving_bounds()) {
+            best_lo_ = lo_;
+            best_hi_ = hi_;
+        }
     }
 
     /// The least infeasible iterate, projected onto [lo, hi]; a free row pushed onto a bound is
@@ -202,9 +261,13 @@ private:
         states = best_states_;
         x = best_x_;
         w_ = best_w_;
+        if (lcp_.has_moving_bounds()) {
+            lo_ = best_lo_;
+            hi_ = best_hi_;
+        }
         for (int i = 0; i < n_; ++i) {
-            if (x[i] < lcp_.lo[i]) { x[i] = lcp_.lo[i]; states[i] = RowState::AtLo; }
-            else if (x[i] > lcp_.hi[i]) { x[i] = lcp_.hi[i]; states[i] = RowState::AtHi; }
+            if (x[i] < lo_[i]) { x[i] = lo_[i]; states[i] = RowState::AtLo; }
+            else if (x[i] > hi_[i]) { x[i] = hi_[i]; states[i] = RowState::AtHi; }
         }
         orient_pinned_rows(states);
     }
@@ -212,7 +275,7 @@ private:
     /// A pinned row is at both bounds; report it at the one its w supports (w >= 0: at lo).
     void orient_pinned_rows(std::vector<RowState>& states) const {
         for (int i = 0; i < n_; ++i)
-            if (lcp_.is_pinned(i)) states[i] = w_[i] >= 0 ? RowState::AtLo : RowState::AtHi;
+            if (pinned(i)) states[i] = w_[i] >= 0 ? RowState::AtLo : RowState::AtHi;
     }
 
     const BoxedLcp& lcp_;
@@ -228,6 +291,9 @@ private:
     std::vector<RowState> best_states_;
     Infeasibility best_inf_;
     std::vector<double> best_x_, best_w_;
+    std::vector<double> lo_ = lcp_.lo, hi_ = lcp_.hi;  ///< the bounds in force (moving friction bounds change)
+    std::vector<double> best_lo_, best_hi_;
+    std::vector<int> linked_;  ///< linked friction rows of the current step
 };
 
 }  // namespace

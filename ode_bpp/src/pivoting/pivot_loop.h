@@ -28,6 +28,7 @@ struct PivotCounters {
     int refactor_steps = 0;
     int accuracy_refactors = 0;  ///< deleted factors rejected by the free-residual check
     int rescues = 0;             ///< fixed-bound solves finished by the driver's rescue continuation
+    int linked_solves = 0;       ///< solves with moving friction bounds (BoxedLcp::friction_normal)
     std::vector<int> tight_per_step;
 };
 

@@ -1,9 +1,13 @@
 // Alg. 2 (BppDown), Alg. 2 + 3 (BppSky) and ours (Bpp): L_FF from one factor L0 of Ap per shift.
 //
-// Index space: the permuted space of Ap throughout. L_ is the working factor; it equals L0_ on
-// columns < dirty_from_, which is what lets a step copy only L0's tail (row deletion at i writes
-// columns first_column_holding(i) .. n-1, linalg/row_delete.h).
+// Index space: the permuted space of Ap throughout. L_ is the working factor; it equals L0_
+// except in columns >= dirty_from_ and, before that column, in the rows dirty_rows_: deleting
+// (or removing) the tight rows T of a step rewrites columns >= min T and zeroes the rows of T
+// (linalg/row_delete.h, skyline_cholesky's removed rows). So a step restores L0 by copying that
+// tail and those rows (SkylineMatrix::copy_rows_from), not everything from the first column
+// holding min T, which on wide envelopes is most of the matrix.
 #include <algorithm>
+#include <cassert>
 #include <limits>
 
 #include "linalg/cost_model.h"
@@ -39,6 +43,8 @@ public:
         if (linalg::skyline_cholesky(L0_, 0, {}) >= 0) return false;
         L_ = L0_;
         dirty_from_ = shape_.n;
+        dirty_rows_.clear();
+        last_factor_ = nullptr;
         return true;
     }
 
@@ -46,6 +52,7 @@ public:
         collect_tight(tight);
         for (int i : tight_rows_) x[i] = 0;
         if (tight_rows_.empty()) {  // L_FF = L0 itself, a fresh factor
+            last_factor_ = &L0_;
             linalg::skyline_solve(L0_, x.data());
             return FactorOutcome::Refactored;
         }
@@ -53,9 +60,18 @@ public:
         // A refactor the cost model chose may meet a pivot that deletion (a rank-1 update,
         // which only adds) never would: delete instead. Only the accuracy retry reports it.
         if (outcome == FactorOutcome::Breakdown && !fresh) outcome = delete_rows();
-        if (outcome == FactorOutcome::Breakdown) return outcome;
+        if (outcome == FactorOutcome::Breakdown) {
+            last_factor_ = nullptr;
+            return outcome;
+        }
+        last_factor_ = &L_;
         linalg::skyline_solve(L_, x.data());
         return outcome;
+    }
+
+    void solve_again(std::vector<double>& x) override {
+        for (int i : tight_rows_) x[i] = 0;
+        if (last_factor_ != nullptr) linalg::skyline_solve(*last_factor_, x.data());
     }
 
     /// Table 4: L0 with every tight row deleted against a fresh factor of A_FF.
@@ -86,39 +102,57 @@ private:
             if (tight[i]) tight_rows_.push_back(i);
     }
 
-    /// First column this step writes: deleting (or zeroing) row k0 reaches back that far.
-    int first_written_column() const { return shape_.first_column_holding(tight_rows_.front()); }
+    /// First column of L_ that this step needs restored to L0: min(dirty_from_, min T).
+    int restore_from() const { return std::min(dirty_from_, tight_rows_.front()); }
 
     /// Bpp's cost model: the cheaper of deleting |T| rows and refactoring from the first tight
     /// column (NOTES: deletion costs ~ |T| (m - i) height, refactoring ~ m height^2).
     bool prefers_refactor() const {
         if (variant_ != SkylineVariant::CostModel) return false;
-        const int copy_from = std::min(dirty_from_, first_written_column());
-        return refactor_price(cost_, tight_rows_, copy_from) < deletion_price(cost_, tight_rows_, copy_from);
+        return refactor_price(cost_, tight_rows_, restore_from()) < deletion_price(cost_, tight_rows_, restore_from());
     }
 
-    /// Alg. 2 lines 7-11: L = L0 (BppDown: all of it; else from the first column that differs
-    /// or will be written), then DOWNDATE for each i in T, ascending.
+    /// Alg. 2 lines 7-11: L = L0 (BppDown: all of it, as the paper copies; else only the tail
+    /// and the rows that differ), then DOWNDATE for each i in T, ascending.
     FactorOutcome delete_rows() {
-        const int written = first_written_column();
-        const int copy_from = variant_ == SkylineVariant::DenseDelete ? 0 : std::min(dirty_from_, written);
-        L_.copy_tail_from(L0_, copy_from);
+        if (variant_ == SkylineVariant::DenseDelete) {
+            L_.copy_tail_from(L0_, 0);
+        } else {
+            const int from = restore_from();
+            L_.copy_tail_from(L0_, from);
+            L_.copy_rows_from(L0_, dirty_rows_, from);
+        }
+        assert(equal_in_envelope(L_, L0_));  // brute-force check of the restore (debug builds)
         for (int i : tight_rows_) linalg::skyline_delete_row(L_, i, work_);
-        dirty_from_ = written;
+        mark_dirty();
         return FactorOutcome::Deleted;
     }
 
-    /// L's columns < k0 from L0 (the factor of the leading block is unchanged), columns >= k0
-    /// from Ap, then Cholesky from k0 with the tight rows removed.
+    /// L's columns < k0 = min T from L0 (the factor of the leading block is unchanged), columns
+    /// >= k0 from Ap, then Cholesky from k0 with the tight rows removed.
     FactorOutcome refactor_tail(const std::vector<char>& tight) {
         const int k0 = tight_rows_.front();
-        const int written = first_written_column();
-        const int copy_from = std::min(dirty_from_, written);
-        copy_columns(L0_, copy_from, k0);
+        const int from = restore_from();
+        copy_columns(L0_, from, k0);
+        L_.copy_rows_from(L0_, dirty_rows_, from);
         L_.copy_tail_from(A_env_, k0);
-        dirty_from_ = written;
+        mark_dirty();
         if (linalg::skyline_cholesky(L_, k0, tight) >= 0) return FactorOutcome::Breakdown;
         return FactorOutcome::Refactored;
+    }
+
+#ifndef NDEBUG
+    static bool equal_in_envelope(const SkylineMatrix& a, const SkylineMatrix& b) {
+        for (int k = 0; k < a.n(); ++k)
+            for (int r = k; r <= a.sky(k); ++r)
+                if (!(a.at(r, k) == b.at(r, k))) return false;
+        return true;
+    }
+#endif
+
+    void mark_dirty() {
+        dirty_from_ = tight_rows_.front();
+        dirty_rows_ = tight_rows_;
     }
 
     /// Columns [from, to) of source into L_ (same shape; columns are stored contiguously).
@@ -135,6 +169,8 @@ private:
     const linalg::CostModel cost_;
     SkylineMatrix A_env_, L0_, L_;
     int dirty_from_ = 0;
+    std::vector<int> dirty_rows_;  ///< rows of L_ that differ from L0_ before dirty_from_
+    const SkylineMatrix* last_factor_ = nullptr;  ///< L_FF of the latest successful solve_free
     std::vector<int> tight_rows_;
     std::vector<double> work_;
 };

@@ -7,7 +7,7 @@ ASAN_DIR   := $(BUILD)/asan
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 
-.PHONY: all deps ode configure build test test-sanitize demo bench bench-report convergence fuzz ode-demos install clean distclean
+.PHONY: all deps ode configure build test test-sanitize demo bench bench-report convergence stability fuzz ode-demos install clean distclean
 
 all: build
 
@@ -76,6 +76,13 @@ bench-report: build
 # Convergence of bpp inside ODE per scene and CFM regime (frozen and consistent friction) -> results/convergence/
 convergence: build
 	@bash scripts/convergence.sh $(CMAKE_DIR) results/convergence
+
+# Where each method stops working: mass ratio, compliance, time step, loops, chain length
+# (dantzig, every bpp variant, pgs, quickstep) -> results/stability/ (CSV, charts, report.md).
+# STABILITY_ARGS=--quick for a few seconds; the full grid takes about 3 minutes.
+STABILITY_ARGS ?=
+stability: build
+	@bash scripts/stability.sh $(CMAKE_DIR) results/stability $(STABILITY_ARGS)
 
 # ODE's own demos (ode/demo), unchanged, headless under Xvfb, dantzig vs bpp; results/ode-demos/
 ode-demos: build

@@ -149,7 +149,8 @@ void SceneWorld::collide_pair(dGeomID a, dGeomID b) {
 bool SceneWorld::step() {
     last_contacts_ = 0;
     dSpaceCollide(space_, this, &SceneWorld::near_callback);
-    const int ok = dWorldStep(world_, params_.step);
+    const int ok = params_.stepper == "quickstep" ? dWorldQuickStep(world_, params_.step)
+                                                  : dWorldStep(world_, params_.step);
     dJointGroupEmpty(contacts_);
     time_ += params_.step;
     ++steps_;

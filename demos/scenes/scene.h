@@ -26,6 +26,9 @@ struct SceneParams {
     double cfm = 1e-10;
     double erp = 0.2;              ///< ODE's default ERP
     std::string solver = "bpp";    ///< MLCP solver name for dWorldSetMLCPSolver
+    /// "step": dWorldStep with the MLCP solver above; "quickstep": ODE's dWorldQuickStep
+    /// (iterative, world level; the MLCP solver is then unused).
+    std::string stepper = "step";
 };
 inline double cfm_from_compliance(double compliance, double step) { return compliance / step; }
 

@@ -88,6 +88,28 @@ TEST(SolverAgreement, ChainIslandWithStructureMatchesDantzig) {
     }
 }
 
+/// A given ordering (the hook passes the previous step's) is the one factored in, whatever it is,
+/// and any valid permutation gives the same answer; an invalid one is ignored.
+TEST(SolverOrdering, GivenOrderingIsUsedAndInvalidOnesAreRecomputed) {
+    const auto p = problems::chain_mlcp(30, 12, 100, 1e-6);
+    for (Method m : {Method::Bpp, Method::BppSky}) {
+        std::vector<double> computed, given;
+        const Result first = run(p, m, computed);
+        ASSERT_EQ(first.status, Status::Converged);
+        ASSERT_EQ(static_cast<int>(first.ordering.size()), p.n);
+        Options o;
+        o.ordering = first.ordering;
+        std::reverse(o.ordering.begin(), o.ordering.end());  // valid, but not what it would choose
+        const Result again = run(p, m, given, o);
+        ASSERT_EQ(again.status, Status::Converged) << to_string(m);
+        EXPECT_EQ(again.ordering, o.ordering) << to_string(m);
+        EXPECT_LT(max_abs_diff(given, computed), 1e-9 * inf_norm(computed)) << to_string(m);
+        o.ordering.assign(p.n, 0);  // not a permutation
+        const Result recomputed = run(p, m, given, o);
+        EXPECT_EQ(recomputed.ordering, first.ordering) << to_string(m);
+    }
+}
+
 /// Consistent friction: the answer satisfies the MLCP with bounds from its own normals, so the
 /// natural residual certifies it. Certified to the per-row tolerance, over cond 1e2 .. 1e14.
 TEST(SolverCertificate, NaturalResidualCertifiesAnswersFromCond1e2To1e14) {

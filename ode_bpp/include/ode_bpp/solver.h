@@ -133,6 +133,10 @@ struct Options {
     int pgs_iterations = 35;
     /// Warm start: initial index set in original row order (n entries), or empty for all free.
     std::vector<RowState> warm_start;
+    /// Bpp and BppSky: the symmetric row permutation to factor in (perm[new] = old, n entries),
+    /// e.g. Result::ordering of the same island's previous step, skipping the ordering (a third of
+    /// a warm 39-row chain solve); empty, or not a permutation of 0..n-1: computed afresh.
+    std::vector<int> ordering;
     /// Compute Table 4's ||L_deleted - chol(A_FF)||_F at the final index set (costly).
     bool compute_factor_error = false;
     /// Record |T| at every pivot step in Result::tight_per_step.
@@ -168,6 +172,7 @@ struct Result {
     /// Table 4's factor error (NaN unless requested and meaningful for the method).
     double factor_error = -1;
     std::vector<RowState> states; ///< final index set, original row order (for warm starts)
+    std::vector<int> ordering;    ///< BPP methods: the permutation factored in (perm[new] = old)
     /// Scale-free natural residual: max_i |x_i - clamp(x_i - w_i/A_ii, lo_i(x), hi_i(x))| / s_i with
     /// s_i = ((|A||x|)_i + |b_i|) / A_ii, the quantity Options::tolerance bounds (ode_bpp/residuals.h).
     double scaled_natural_residual = 0;

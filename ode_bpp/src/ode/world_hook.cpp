@@ -18,6 +18,7 @@
 #include <mutex>
 #include <unordered_map>
 
+#include "ode/ordering_cache.h"
 #include "ode/row_identity.h"
 
 namespace ode_bpp {
@@ -26,6 +27,7 @@ namespace {
 struct WorldState {
     WorldSettings settings;
     RowStateMemory memory;       // index sets of the previous step, by row identity
+    OrderingCache orderings;     // row orderings of the previous steps, by island structure
     Result last;
 };
 
@@ -106,6 +108,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     const Method method = *static_cast<const Method*>(userdata);
     thread_local std::vector<int> block_row, block_body;
     thread_local std::vector<RowKey> keys;
+    thread_local std::vector<int> structure;
     if (problem->joints != nullptr) fill_blocks(*problem, block_row, block_body);
     const Problem q = view_of(*problem, block_row, block_body);
 
@@ -118,6 +121,10 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
         if (ws.settings.warm_start && problem->joints != nullptr) {
             row_keys(*problem, keys);
             warm = ws.memory.recall(keys, options.warm_start);
+        }
+        if (problem->joints != nullptr) {
+            OrderingCache::signature(*problem, structure);
+            if (const std::vector<int>* known = ws.orderings.find(structure)) options.ordering = *known;
         }
     }
     options.method = method;
@@ -136,6 +143,8 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     HookState& h = hook();
     WorldState& ws = h.worlds[problem->world];
     if (problem->joints != nullptr && status != dMLCPFailed) ws.memory.remember(keys, r.states);
+    if (problem->joints != nullptr && !r.ordering.empty() && r.ordering != options.ordering)
+        ws.orderings.store(structure, r.ordering);
     ws.last = r;
     h.counters.islands += 1;
     h.counters.warm_started += warm ? 1 : 0;

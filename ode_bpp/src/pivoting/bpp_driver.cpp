@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 
+#include "ordering/order_rows.h"
 #include "pivoting/boxed_lcp.h"
 #include "pivoting/free_solver.h"
 #include "pivoting/friction_update.h"
@@ -60,7 +61,9 @@ public:
     }
 
     Result run(std::vector<double>& x_out) {
-        perm_ = choose_ordering(o_.method, p_, A_original_, o_.warm_start);
+        const bool given = (o_.method == Method::Bpp || o_.method == Method::BppSky) &&
+                           ordering::is_permutation(o_.ordering, p_.n);
+        perm_ = given ? o_.ordering : choose_ordering(o_.method, p_, A_original_, o_.warm_start);
         Ap_ = A_original_.permuted(perm_);
         solver_ = make_free_solver(o_.method, Ap_);
         Result r;
@@ -390,6 +393,7 @@ private:
             r.regularization = shift_;
             return r;
         }
+        r.ordering = perm_;
         r.states.resize(static_cast<std::size_t>(p_.n));
         for (int i = 0; i < p_.n; ++i) {
             x_out[perm_[i]] = x[i];

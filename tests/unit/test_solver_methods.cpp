@@ -88,6 +88,24 @@ TEST(SolverAgreement, ChainIslandWithStructureMatchesDantzig) {
     }
 }
 
+/// Bpp refactors small islands densely (Options::dense_island_rows); with the threshold at 0 the
+/// same islands go through the skyline strategy, and both answers pass the same certificate.
+TEST(SolverSmallIslands, DenseAndSkylinePathsOfBppAgree) {
+    for (int n : {6, 20, 32}) {
+        const auto p = problems::random_boxed_mlcp(n, 2, 0, 1e6, 40 + n);  // fixed bounds: certificate applies
+        std::vector<double> dense, skyline;
+        const Result a = run(p, Method::Bpp, dense);
+        Options o;
+        o.dense_island_rows = 0;
+        const Result b = run(p, Method::Bpp, skyline, o);
+        ASSERT_EQ(a.status, Status::Converged) << n;
+        ASSERT_EQ(b.status, Status::Converged) << n;
+        EXPECT_EQ(a.downdate_steps, 0) << n;  // the dense path never deletes rows
+        EXPECT_LT(max_abs_diff(dense, skyline), 1e-8 * (1 + inf_norm(dense))) << n;
+        EXPECT_LT(b.scaled_natural_residual, o.tolerance) << n;
+    }
+}
+
 /// A given ordering (the hook passes the previous step's) is the one factored in, whatever it is,
 /// and any valid permutation gives the same answer; an invalid one is ignored.
 TEST(SolverOrdering, GivenOrderingIsUsedAndInvalidOnesAreRecomputed) {

@@ -129,6 +129,12 @@ struct Options {
     /// Regularization continuation for nearly singular A: solve with A + delta*I, delta falling
     /// geometrically to 0, each stage warm-started from the last. 0 disables it.
     int continuation_stages = 0;
+    /// Bpp: islands of at most this many rows refactor densely at every step (as BppChol), in
+    /// the caller's order: there the skyline's set-up (ordering, shape, cost model, L0 and its
+    /// copy) costs more than a dense Cholesky of the whole island. 32: on the captured paper
+    /// corpus (cold), the 12-row forwarder and 18-24-row crane islands took 1.2-1.3x bpp-chol's
+    /// time with the skyline. 0: always the skyline.
+    int dense_island_rows = 32;
     /// Projected Gauss-Seidel sweeps (Method::Pgs only).
     int pgs_iterations = 35;
     /// Warm start: initial index set in original row order (n entries), or empty for all free.

@@ -61,11 +61,12 @@ public:
     }
 
     Result run(std::vector<double>& x_out) {
-        const bool given = (o_.method == Method::Bpp || o_.method == Method::BppSky) &&
+        const Method strategy = strategy_method();
+        const bool given = (strategy == Method::Bpp || strategy == Method::BppSky) &&
                            ordering::is_permutation(o_.ordering, p_.n);
-        perm_ = given ? o_.ordering : choose_ordering(o_.method, p_, A_original_, o_.warm_start);
+        perm_ = given ? o_.ordering : choose_ordering(strategy, p_, A_original_, o_.warm_start);
         Ap_ = A_original_.permuted(perm_);
-        solver_ = make_free_solver(o_.method, Ap_);
+        solver_ = make_free_solver(strategy, Ap_);
         Result r;
         if (!solver_) {
             x_out.assign(static_cast<std::size_t>(p_.n), 0.0);
@@ -83,6 +84,11 @@ public:
 
 private:
     // ---- set-up, permuted space -------------------------------------------------------
+    /// The factor strategy: the method's own, except Bpp on small islands (dense_island_rows).
+    Method strategy_method() const {
+        return o_.method == Method::Bpp && p_.n <= o_.dense_island_rows ? Method::BppChol : o_.method;
+    }
+
     void build_permuted_problem() {
         const int n = p_.n;
         const std::vector<int> to_new = inverse_permutation(perm_);

@@ -46,11 +46,19 @@ std::vector<int> tight_last(std::vector<int> perm, const std::vector<char>& tigh
     return perm;
 }
 
-/// Below this many envelope entries in the caller's own order, no ordering can repay its cost:
-/// the factor costs at most sum_k height_k^2 <= 2 * 64^(3/2) ~ 1000 flops, about what building the
-/// constraint graph and numbering it costs (callgrind on ODE's 6-row demo_motors island: the
-/// orderings were a quarter of the ~68k instructions of a solve).
-constexpr std::ptrdiff_t kSmallEnvelope = 64;
+/// Instructions that numbering the graph costs per vertex and per edge: the two Cuthill-McKee
+/// numberings and their envelope comparison (callgrind, ODE's 6-row demo_motors island: ~6k
+/// instructions for 6 vertices and 15 edges), in units comparable to CostModel's multiply-adds.
+constexpr double kOrderingCostPerEntry = 300;
+
+/// True when factoring in the caller's own order, kStepsPerWarmSolve times, costs less than
+/// computing an ordering at all: small islands (every one of up to ~20 rows), where the orderings
+/// made bpp slower than a dense Cholesky of the same frame.
+bool ordering_cannot_pay(const SymmetricRows& A) {
+    const linalg::CostModel identity(linalg::SkylineShape::from_row_profile(A.row_profile()));
+    const double nnz = A.n() > 0 ? A.row_end(A.n() - 1) : 0;
+    return kStepsPerWarmSolve * identity.refactor_cost(0) <= kOrderingCostPerEntry * (A.n() + nnz);
+}
 
 }  // namespace
 
@@ -72,7 +80,7 @@ std::vector<int> choose_ordering(Method method, const Problem& problem, const Sy
     using ordering::OrderingKind;
     if (method == Method::BppSky) return order(problem, OrderingKind::CuthillMcKee, nullptr);
     if (method != Method::Bpp) return identity(problem.n);
-    if (linalg::envelope_size(A.row_profile()) <= kSmallEnvelope) return identity(problem.n);
+    if (ordering_cannot_pay(A)) return identity(problem.n);
     const std::vector<int> cm = order(problem, OrderingKind::CuthillMcKee, nullptr);
     const std::vector<int> rcm = order(problem, OrderingKind::ReverseCuthillMcKee, nullptr);
     std::vector<int> best = smaller_envelope(A, cm, rcm);

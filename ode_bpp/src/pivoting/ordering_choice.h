@@ -11,8 +11,8 @@ namespace ode_bpp::pivoting {
 /// perm[new] = old (n entries) for the method:
 ///  - BppChol, BppDown: the identity (Alg. 1 and Alg. 2 without skyline use no ordering);
 ///  - BppSky: Cuthill-McKee over the constraint graph (Sec. 3.4);
-///  - Bpp: the identity when its envelope is tiny (at most 64 entries, e.g. a 6-row island: no
-///    ordering repays its own cost there); else the one of Cuthill-McKee and reverse
+///  - Bpp: the identity wherever factoring in it costs less than computing an ordering (small
+///    islands); else the one of Cuthill-McKee and reverse
 ///    Cuthill-McKee with the smaller envelope; with a
 ///    warm start (original space, n entries or empty) that has tight rows, also both orders with
 ///    those rows moved last (where deleting or refactoring them touches the fewest columns), and

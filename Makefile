@@ -59,19 +59,38 @@ demo: build
 	@echo "[demo] per island and step: rows, tight fraction, solve time, pivots, residual -> results/demo.csv"
 	@set -o pipefail; $(CMAKE_DIR)/demos/ode-bpp-demo paper --compare dantzig,bpp --csv results/demo.csv | tee results/demo.txt
 
-# Google Benchmark: the kernels (factor, delete one row, solve) and the paper's Fig. 4; CSV in results/.
-bench: build
-	@mkdir -p results
-	@echo "[bench] kernels: factorization, row deletion, solve, skyline vs dense (about 2 minutes)"
-	@$(CMAKE_DIR)/bench/bench_kernels --benchmark_out=results/bench_kernels.csv --benchmark_out_format=csv
-	@echo "[bench] Fig. 4: speed-up of deletion over refactoring by % tight (about 1 minute)"
-	@$(CMAKE_DIR)/bench/bench_fig4 --benchmark_out=results/bench_fig4.csv --benchmark_out_format=csv
+.PHONY: bench-kernels deps-peers
 
-# Speed against accuracy on one captured corpus: tables 3-4, targets, charts -> results/bench-report/.
-# BENCH_REPORT_ARGS=--quick for a few minutes instead of the paper's 20 s per scene.
+# The peer solvers of `make bench` (DART, Bullet, Siconos numerics), from Debian.
+PEER_PACKAGES := libdart-dev libbullet-dev libsiconos-numerics-dev
+deps-peers: deps
+	@bash scripts/install-deps.sh $(PEER_PACKAGES)
+
+# Speed against accuracy, side by side with ODE's Dantzig and the peers, on one captured corpus:
+# corpus -> every method and peer in one process -> CSV, charts (PNG, SVG), report.md in
+# results/bench/ (docs/benchmarks.md). About 20 minutes; BENCH_ARGS=--quick for about 3,
+# BENCH_ARGS=--no-peers without the peers. The peers' packages are installed first (as deps-peers);
+# without them (not root, no network) the report says so and compares ode-bpp's methods alone.
 BENCH_REPORT_ARGS ?=
-bench-report: build
-	@bash scripts/bench-report.sh $(CMAKE_DIR) results/bench-report $(BENCH_REPORT_ARGS)
+BENCH_ARGS ?= $(BENCH_REPORT_ARGS)
+bench: build
+	@bash scripts/install-deps.sh $(PEER_PACKAGES) || \
+	  echo "[bench] warning: the peers' packages could not be installed; the report runs without them"
+	@echo "[bench] reconfiguring so that bench/peers finds the peer packages"
+	@cmake -S . -B $(CMAKE_DIR) >/dev/null
+	@cmake --build $(CMAKE_DIR) -j$(JOBS) --target bench_corpus bench_fig4 bench_fig5 ode-bpp-demo
+	@bash scripts/bench-report.sh $(CMAKE_DIR) results/bench $(BENCH_ARGS)
+
+# The former name of `make bench`.
+bench-report: bench
+
+# Google Benchmark: the kernels (factor, delete one row, solve) and the paper's Fig. 4; CSV in results/.
+bench-kernels: build
+	@mkdir -p results
+	@echo "[bench-kernels] kernels: factorization, row deletion, solve, skyline vs dense (about 2 minutes)"
+	@$(CMAKE_DIR)/bench/bench_kernels --benchmark_out=results/bench_kernels.csv --benchmark_out_format=csv
+	@echo "[bench-kernels] Fig. 4: speed-up of deletion over refactoring by % tight (about 1 minute)"
+	@$(CMAKE_DIR)/bench/bench_fig4 --benchmark_out=results/bench_fig4.csv --benchmark_out_format=csv
 
 # Convergence of bpp inside ODE per scene and CFM regime (frozen and consistent friction) -> results/convergence/
 convergence: build

@@ -2,7 +2,17 @@
 // the methods interleaved file by file, and writes one CSV row per (file, method variant).
 //
 //   bench_corpus [--methods bpp,bpp-sky,...] [--pgs-iterations 10,35,...] [--repeat R]
-//                [--warmup N] [--factor-error] [--limit] [--cond] [--consistent] --csv OUT DIR|FILE...
+//                [--warmup N] [--factor-error] [--limit] [--cond] [--consistent]
+//                [--peers all|none|name,...] [--peer-iterations 10,35,...] [--peer-every K]
+//                [--peer-repeat R] [--list-peers]
+//                --csv OUT DIR|FILE...
+//
+// Peers (bench/peers, when built with their Debian packages): other libraries' solvers, each
+// given the same Problem and timed the same way (their copies of A and the bounds included, as
+// any caller pays them); their answers are judged by ode_bpp::compute_residuals, the residual
+// Result carries for ode_bpp's methods. --peer-every K runs them only on frames whose number is a
+// multiple of K, with --peer-repeat timed rounds (default --repeat); the dense PGS and Lemke peers
+// cost far more than the rest on large islands.
 //
 // --consistent adds the variant "bpp-consistent": bpp with FrictionMode::Consistent, whose answer
 // satisfies |x_i| <= mu_i x_findex[i] at convergence, so that its natural residual (friction bounds
@@ -34,7 +44,9 @@
 #include <vector>
 
 #include "ode_bpp/io.h"
+#include "ode_bpp/residuals.h"
 #include "ode_bpp/solver.h"
+#include "peer_registry.h"
 
 namespace {
 
@@ -43,7 +55,9 @@ struct Variant {
     ode_bpp::Method method = ode_bpp::Method::Bpp;
     int pgs_iterations = 0;  ///< 0 for the direct methods
     ode_bpp::FrictionMode friction = ode_bpp::FrictionMode::Frozen;
-    std::string name;        ///< "bpp", "pgs-35", ...
+    std::string name;        ///< "bpp", "pgs-35", "bullet-lemke", ...
+    ode_bpp::bench::PeerMethod peer;  ///< set (peer.solve callable) for a peer's variant
+    bool is_peer() const { return static_cast<bool>(peer.solve); }
 };
 
 struct Cli {
@@ -55,6 +69,11 @@ struct Cli {
     bool limit = false;
     bool cond = false;
     bool consistent = false;
+    std::vector<std::string> peers;  ///< names, or {"all"}; empty: none
+    std::vector<int> peer_iterations{10, 35, 100, 300};
+    int peer_every = 1;
+    int peer_repeat = 0;  ///< 0: as repeat
+    bool list_peers = false;
     std::string csv;
     std::vector<std::string> inputs;
 };
@@ -63,7 +82,8 @@ struct Cli {
     std::cerr << "bench_corpus: " << why << "\n"
               << "usage: bench_corpus [--methods a,b,...] [--pgs-iterations 10,35,...] [--repeat R]\n"
                  "                    [--warmup N] [--factor-error] [--limit] [--cond] [--consistent]\n"
-                 "                    --csv OUT DIR|FILE...\n";
+                 "                    [--peers all|none|name,...] [--peer-iterations 10,35,...] [--peer-every K]\n"
+                 "                    [--peer-repeat R] [--list-peers] --csv OUT DIR|FILE...\n";
     std::exit(2);
 }
 
@@ -114,6 +134,18 @@ Cli parse_cli(int argc, char** argv) {
             cli.cond = true;
         } else if (arg == "--consistent") {
             cli.consistent = true;
+        } else if (arg == "--peers") {
+            cli.peers = split_commas(value());
+            if (cli.peers.size() == 1 && cli.peers[0] == "none") cli.peers.clear();
+        } else if (arg == "--peer-iterations") {
+            cli.peer_iterations.clear();
+            for (const std::string& count : split_commas(value())) cli.peer_iterations.push_back(parse_positive(arg, count));
+        } else if (arg == "--peer-every") {
+            cli.peer_every = parse_positive(arg, value());
+        } else if (arg == "--peer-repeat") {
+            cli.peer_repeat = parse_positive(arg, value());
+        } else if (arg == "--list-peers") {
+            cli.list_peers = true;
         } else if (arg == "--csv") {
             cli.csv = value();
         } else if (!arg.empty() && arg[0] == '-') {
@@ -122,6 +154,7 @@ Cli parse_cli(int argc, char** argv) {
             cli.inputs.push_back(arg);
         }
     }
+    if (cli.list_peers) return cli;
     if (cli.csv.empty()) usage("--csv OUT is required");
     if (cli.inputs.empty()) usage("no DIR or FILE given");
     if (cli.methods.empty()) {
@@ -134,14 +167,19 @@ std::vector<Variant> make_variants(const Cli& cli) {
     std::vector<Variant> variants;
     for (ode_bpp::Method method : cli.methods) {
         if (method != ode_bpp::Method::Pgs) {
-            variants.push_back({method, 0, ode_bpp::FrictionMode::Frozen, ode_bpp::to_string(method)});
+            variants.push_back({method, 0, ode_bpp::FrictionMode::Frozen, ode_bpp::to_string(method), {}});
             continue;
         }
         for (int sweeps : cli.pgs_iterations)
-            variants.push_back({method, sweeps, ode_bpp::FrictionMode::Frozen, "pgs-" + std::to_string(sweeps)});
+            variants.push_back({method, sweeps, ode_bpp::FrictionMode::Frozen, "pgs-" + std::to_string(sweeps), {}});
     }
     if (cli.consistent)
-        variants.push_back({ode_bpp::Method::Bpp, 0, ode_bpp::FrictionMode::Consistent, "bpp-consistent"});
+        variants.push_back({ode_bpp::Method::Bpp, 0, ode_bpp::FrictionMode::Consistent, "bpp-consistent", {}});
+    const bool all = cli.peers.size() == 1 && cli.peers[0] == "all";
+    for (ode_bpp::bench::PeerMethod& peer : ode_bpp::bench::all_peer_methods(cli.peer_iterations)) {
+        if (all || std::find(cli.peers.begin(), cli.peers.end(), peer.name) != cli.peers.end())
+            variants.push_back({ode_bpp::Method::Bpp, peer.iterations, ode_bpp::FrictionMode::Frozen, peer.name, peer});
+    }
     return variants;
 }
 
@@ -181,6 +219,15 @@ double timed_solve(const ode_bpp::Problem& problem, const ode_bpp::Options& opti
     return std::chrono::duration<double, std::micro>(stop - start).count();
 }
 
+/// Wall time of one peer solve in microseconds; status receives the peer's claim.
+double timed_peer_solve(const ode_bpp::Problem& problem, const Variant& variant, std::vector<double>& x,
+                        ode_bpp::bench::PeerStatus* status) {
+    const auto start = std::chrono::steady_clock::now();
+    *status = variant.peer.solve(problem, x.data());
+    const auto stop = std::chrono::steady_clock::now();
+    return std::chrono::duration<double, std::micro>(stop - start).count();
+}
+
 double median(std::vector<double> values) {
     if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
     std::sort(values.begin(), values.end());
@@ -199,7 +246,11 @@ double condition_number(const ode_bpp::MlcpFile& file) {
 
 /// What one variant did on one file.
 struct Measurement {
-    ode_bpp::Result result;
+    ode_bpp::Result result;  ///< for a peer: status unused, residual fields from compute_residuals
+    std::vector<double> x;
+    ode_bpp::bench::PeerStatus peer_status = ode_bpp::bench::PeerStatus::Skipped;
+    bool measured = false;   ///< false: not run on this file (a peer outside --peer-every)
+    double nonfriction_residual = std::numeric_limits<double>::quiet_NaN();
     std::vector<double> times_us;
     double factor_error = std::numeric_limits<double>::quiet_NaN();
     double limit_us = std::numeric_limits<double>::quiet_NaN();
@@ -233,24 +284,67 @@ void measure_limit(const ode_bpp::Problem& problem, int repeat, Measurement& bpp
     bpp.limit_status = ode_bpp::to_string(result.status);
 }
 
+/// The relative natural residual (as Result::relative_natural_residual) over the rows without
+/// friction only (findex < 0), where every method solves the same fixed-bound conditions and the
+/// Frozen/Consistent friction semantics play no part. x: n entries, original order.
+double nonfriction_residual(const ode_bpp::Problem& problem, const std::vector<double>& x) {
+    const ode_bpp::ConstStrided xs{x.data(), 1};
+    std::vector<double> w, scale;
+    ode_bpp::residual_vectors(problem, xs, w, scale);
+    double worst = 0.0, b_norm = 1.0;
+    for (int i = 0; i < problem.n; ++i) {
+        b_norm = std::max(b_norm, std::fabs(problem.b[i]));
+        if (problem.findex && problem.findex[i] >= 0) continue;
+        const auto [lo, hi] = ode_bpp::effective_bounds(problem, xs, i);
+        worst = std::max(worst, std::fabs(x[i] - std::clamp(x[i] - w[i], lo, hi)));
+    }
+    return worst / b_norm;
+}
+
+/// One run of a variant into m (its answer in m.x); returns the wall time in microseconds.
+double run_variant(const ode_bpp::Problem& problem, const Variant& variant, Measurement& m) {
+    if (variant.is_peer()) return timed_peer_solve(problem, variant, m.x, &m.peer_status);
+    return timed_solve(problem, options_for(variant), m.x, &m.result);
+}
+
+/// A peer's answer judged like ode_bpp's: the residuals of ode_bpp/residuals.h at its x.
+void judge_peer_answer(const ode_bpp::Problem& problem, Measurement& m) {
+    const ode_bpp::Residuals r = ode_bpp::compute_residuals(problem, ode_bpp::ConstStrided{m.x.data(), 1});
+    m.result.natural_residual = r.natural;
+    m.result.relative_natural_residual = r.relative_natural;
+    m.result.scaled_natural_residual = r.scaled_natural;
+    m.result.friction_error = r.friction;
+    m.result.pivots = 0;
+    m.result.tight = 0;
+}
+
 std::vector<Measurement> measure_file(const ode_bpp::Problem& problem, const std::vector<Variant>& variants,
-                                      const Cli& cli, std::size_t file_index) {
+                                      const Cli& cli, std::size_t file_index, bool with_peers) {
     const std::size_t count = variants.size();
     std::vector<Measurement> out(count);
-    std::vector<double> x(static_cast<std::size_t>(problem.n));
-    for (std::size_t v = 0; v < count; ++v) timed_solve(problem, options_for(variants[v]), x, &out[v].result);
-    for (int r = 0; r < cli.repeat; ++r) {
+    for (std::size_t v = 0; v < count; ++v) {
+        out[v].measured = with_peers || !variants[v].is_peer();
+        out[v].x.assign(static_cast<std::size_t>(problem.n), 0.0);
+        if (out[v].measured) run_variant(problem, variants[v], out[v]);
+    }
+    const int peer_repeat = cli.peer_repeat > 0 ? cli.peer_repeat : cli.repeat;
+    for (int r = 0; r < std::max(cli.repeat, peer_repeat); ++r) {
         for (std::size_t k = 0; k < count; ++k) {
             const std::size_t v = (k + file_index + static_cast<std::size_t>(r)) % count;
-            out[v].times_us.push_back(timed_solve(problem, options_for(variants[v]), x, &out[v].result));
+            const int rounds = variants[v].is_peer() ? peer_repeat : cli.repeat;
+            if (out[v].measured && r < rounds) out[v].times_us.push_back(run_variant(problem, variants[v], out[v]));
         }
     }
     for (std::size_t v = 0; v < count; ++v) {
+        if (!out[v].measured) continue;
+        out[v].nonfriction_residual = nonfriction_residual(problem, out[v].x);
+        if (variants[v].is_peer()) judge_peer_answer(problem, out[v]);
+        if (variants[v].is_peer()) continue;
         const bool factored = variants[v].method != ode_bpp::Method::Dantzig && variants[v].method != ode_bpp::Method::Pgs;
         if (cli.factor_error && factored) {
             ode_bpp::Options options = options_for(variants[v]);
             options.compute_factor_error = true;
-            ode_bpp::Result with_error = ode_bpp::solve(problem, options, x.data());
+            ode_bpp::Result with_error = ode_bpp::solve(problem, options, out[v].x.data());
             out[v].factor_error = with_error.factor_error;
         }
         if (cli.limit && variants[v].name == "bpp") measure_limit(problem, cli.repeat, out[v]);
@@ -261,7 +355,7 @@ std::vector<Measurement> measure_file(const ode_bpp::Problem& problem, const std
 const char* kHeader =
     "group,scene,frame,island,file,n,nub,cond,method,iterations,status,time_us,pivots,murty_pivots,"
     "tight,natural_residual,relative_natural_residual,scaled_natural_residual,friction_error,"
-    "factor_error,fallback,limit_us,limit_status\n";
+    "factor_error,fallback,limit_us,limit_status,nonfriction_residual\n";
 
 void write_row(std::ostream& csv, const ode_bpp::MlcpFile& file, const std::string& path, double cond,
                const Variant& variant, const Measurement& m) {
@@ -269,11 +363,12 @@ void write_row(std::ostream& csv, const ode_bpp::MlcpFile& file, const std::stri
     csv << group_of(path) << ',' << meta_or(file, "scene", "") << ',' << meta_or(file, "frame", "") << ','
         << meta_or(file, "island", "") << ',' << std::filesystem::path(path).filename().string() << ','
         << file.n << ',' << file.nub << ',' << cond << ',' << variant.name << ',' << variant.pgs_iterations << ','
-        << ode_bpp::to_string(r.status) << ',' << median(m.times_us) << ',' << r.pivots << ',' << r.murty_pivots
+        << (variant.is_peer() ? ode_bpp::bench::to_string(m.peer_status) : ode_bpp::to_string(r.status)) << ','
+        << median(m.times_us) << ',' << r.pivots << ',' << r.murty_pivots
         << ',' << r.tight << ',' << r.natural_residual << ',' << r.relative_natural_residual << ','
         << r.scaled_natural_residual << ',' << r.friction_error << ',' << m.factor_error << ','
         << (r.fallback.empty() ? "-" : r.fallback) << ',' << m.limit_us << ','
-        << (m.limit_status.empty() ? "-" : m.limit_status) << '\n';
+        << (m.limit_status.empty() ? "-" : m.limit_status) << ',' << m.nonfriction_residual << '\n';
 }
 
 void warm_up(const std::vector<std::string>& files, const std::vector<Variant>& variants, int count) {
@@ -282,15 +377,39 @@ void warm_up(const std::vector<std::string>& files, const std::vector<Variant>& 
         if (!read.ok) continue;
         std::vector<double> x(static_cast<std::size_t>(read.file.n));
         ode_bpp::Result result;
-        for (const Variant& variant : variants) timed_solve(read.file.view(), options_for(variant), x, &result);
+        for (const Variant& variant : variants) {
+            if (variant.is_peer()) continue;  // peers are warmed up by their untimed first run per file
+            timed_solve(read.file.view(), options_for(variant), x, &result);
+        }
     }
 }
 
 }  // namespace
 
+/// Peers run on frames whose number is a multiple of --peer-every (files without a frame: always).
+bool peers_on(const ode_bpp::MlcpFile& file, int peer_every) {
+    const std::string frame = meta_or(file, "frame", "");
+    if (frame.empty() || peer_every <= 1) return true;
+    try {
+        return std::stol(frame) % peer_every == 0;
+    } catch (const std::exception&) {
+        return true;
+    }
+}
+
+int list_peers() {
+    const std::vector<ode_bpp::bench::PeerMethod> peers = ode_bpp::bench::all_peer_methods({10});
+    if (peers.empty()) std::cout << "none (bench_corpus was built without peers; see bench/peers)\n";
+    for (const auto& peer : peers) std::cout << peer.name << "\n";
+    return 0;
+}
+
 int main(int argc, char** argv) {
     const Cli cli = parse_cli(argc, argv);
+    if (cli.list_peers) return list_peers();
     const std::vector<Variant> variants = make_variants(cli);
+    if (!cli.peers.empty() && std::none_of(variants.begin(), variants.end(), [](const Variant& v) { return v.is_peer(); }))
+        std::cerr << "bench_corpus: no peer matches --peers (built without peers? --list-peers shows them)\n";
     const std::vector<std::string> files = list_files(cli.inputs);
     if (files.empty()) usage("no *.mlcp files under the inputs");
     std::ofstream csv(cli.csv);
@@ -307,8 +426,10 @@ int main(int argc, char** argv) {
             continue;
         }
         const double cond = cli.cond ? condition_number(read.file) : std::numeric_limits<double>::quiet_NaN();
-        const std::vector<Measurement> measured = measure_file(read.file.view(), variants, cli, k);
-        for (std::size_t v = 0; v < variants.size(); ++v) write_row(csv, read.file, files[k], cond, variants[v], measured[v]);
+        const std::vector<Measurement> measured =
+            measure_file(read.file.view(), variants, cli, k, peers_on(read.file, cli.peer_every));
+        for (std::size_t v = 0; v < variants.size(); ++v)
+            if (measured[v].measured) write_row(csv, read.file, files[k], cond, variants[v], measured[v]);
         if ((k + 1) % 100 == 0 || k + 1 == files.size())
             std::cerr << "bench_corpus: [" << k + 1 << "/" << files.size() << "] " << group_of(files[k]) << "\n";
     }

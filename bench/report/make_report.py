@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """make_report.py OUT_DIR MODE: tables, targets and charts from bench-report.sh's outputs.
 
-Reads OUT_DIR/bench.csv (bench_corpus: one row per file x method variant), OUT_DIR/steps/*.csv
-(ode-bpp-demo's per-island-per-step CSV) and, if present, OUT_DIR/bench_fig4.csv; writes
-OUT_DIR/report.md and OUT_DIR/charts/*.png|svg (gnuplot). Standard library only.
+Reads OUT_DIR/bench.csv (bench_corpus: one row per file x method variant, peers included),
+OUT_DIR/steps/*.csv (ode-bpp-demo's per-island-per-step CSV) and, if present, OUT_DIR/bench_fig4.csv,
+OUT_DIR/fig5.csv with OUT_DIR/fig5/*.dat, OUT_DIR/callgrind.csv and OUT_DIR/failures.txt; writes
+OUT_DIR/report.md and OUT_DIR/charts/*.png|svg (gnuplot). Standard library only. A section whose
+inputs are missing or broken says so in the report instead of stopping it.
 
 A frame is one captured step of one scene and regime; its solve time is the sum over its islands
 (the paper does not parallelize islands, Sec. 4.2). Table 3 and Table 4 exclude frames without
@@ -36,6 +38,10 @@ PAPER_T4 = {
     "forwarder": ((1.11e-10, 7.00e-08, 4.04e-09, 3.22e-09), (1.11e-10, 7.00e-08, 4.04e-09, 3.22e-09)),
 }
 RESIDUAL_FLOOR = 1e-18  # zero residuals drawn at this height on log axes
+# peers: bench_corpus names them <package>-<solver>[-<sweeps>]
+PEER_PACKAGES = ("dart-", "bullet-", "siconos-")
+PEER_DIRECT = ["dart-dantzig", "bullet-dantzig", "bullet-lemke", "siconos-lemke"]
+PEER_ITERATIVE = ["dart-pgs", "bullet-pgs", "siconos-pgs"]
 
 
 def num(text):
@@ -68,10 +74,18 @@ def fmt_e(value):
     return "–" if math.isnan(value) else f"{value:.2e}"
 
 
-def verdict(ok, measured=True):
+def verdict(ok, measured=True, gap=""):
+    """'met' or '**missed**', followed by the gap to the target when one is given."""
     if not measured:
         return "n/a (no frame with tight rows)"
-    return "met" if ok else "**missed**"
+    return ("met" if ok else "**missed**") + (f" ({gap})" if gap else "")
+
+
+def gap(measured, target):
+    """measured relative to target, in % (+ above, − below)."""
+    if math.isnan(measured) or math.isnan(target) or target == 0:
+        return ""
+    return f"{100.0 * (measured / target - 1.0):+.0f} %".replace("-", "−")
 
 
 def mean(values):
@@ -93,21 +107,45 @@ def load_bench(path):
 
 
 def frames_of(islands):
-    """frames[frame][method] = {time_us, residual, converged, tight}; tight: bpp-chol saw a tight row."""
-    frames = defaultdict(lambda: defaultdict(lambda: {"time_us": 0.0, "limit_us": 0.0, "residual": 0.0, "converged": True, "tight": 0}))
+    """frames[frame][method] = {time_us, residual, converged, tight, skipped, failed}; a frame is one
+    captured step, its values summed (time) or maxed (residuals) over its islands. A method appears
+    in a frame only when it ran on every island of the frame (peers run on a subset of frames;
+    a peer that skipped an island, e.g. Lemke above its size limit, is left out of that frame)."""
+    count = defaultdict(int)
+    frames = defaultdict(lambda: defaultdict(lambda: {"time_us": 0.0, "limit_us": 0.0, "residual": 0.0, "nonfriction": 0.0,
+                                                      "friction": 0.0, "converged": True, "tight": 0, "skipped": False,
+                                                      "failed": 0, "islands": 0}))
     for (frame, _), methods in islands.items():
+        count[frame] += 1
         for method, row in methods.items():
             f = frames[frame][method]
+            f["islands"] += 1
             f["time_us"] += num(row["time_us"])
             f["limit_us"] += num(row["limit_us"])
             f["residual"] = max(f["residual"], num(row["relative_natural_residual"]))
+            f["nonfriction"] = max(f["nonfriction"], num(row.get("nonfriction_residual")))
+            f["friction"] = max(f["friction"], num(row["friction_error"]))
             f["converged"] = f["converged"] and row["status"] == "converged"
-            f["tight"] += int(row["tight"])
+            f["skipped"] = f["skipped"] or row["status"] == "skipped"
+            f["failed"] += row["status"] == "failed"
+            f["tight"] += int(row["tight"] or 0)
+    for frame, methods in frames.items():
+        for method in [m for m, f in methods.items() if f["islands"] < count[frame] or f["skipped"]]:
+            del methods[method]
     return frames
 
 
+def having(frames, *methods):
+    """The frames in which every one of methods ran."""
+    return [f for f in frames if all(m in f for m in methods)]
+
+
+def is_peer(method):
+    return method.startswith(PEER_PACKAGES)
+
+
 def frame_is_tight(methods):
-    return methods.get("bpp-chol", {"tight": 0})["tight"] > 0
+    return "bpp-chol" in methods and methods["bpp-chol"]["tight"] > 0
 
 
 def load_steps(out_dir, scene):
@@ -152,7 +190,8 @@ def table3(lines, bench, regime):
     for scene in SCENES:
         frames = frames_of(bench.get(f"{scene}-{regime}", {}))
         for label, selected in (("T", [f for f in frames.values() if frame_is_tight(f)]), ("all", list(frames.values()))):
-            means = {m: mean([f[m]["time_us"] for f in selected if m in f]) for m in TABLE3_METHODS}
+            selected = having(selected, *TABLE3_METHODS)
+            means = {m: mean([f[m]["time_us"] for f in selected]) for m in TABLE3_METHODS}
             cells = []
             for m in TABLE3_METHODS:
                 cells.append(f"{fmt_ms(means[m])} ({fmt_x(means['bpp-chol'] / means[m])} / {fmt_x(means['dantzig'] / means[m])})")
@@ -241,16 +280,18 @@ def targets(lines, bench):
     lines.append("## Targets (issue 5), each measured value next to its target\n")
     lines.append("Speed-ups are ratios of the mean frame time over the frames with tight variables; "
                  "*frames < 1×* counts the frames where bpp was slower than bpp-chol. bpp/limit: per frame (all frames), "
-                 "bpp's time over its limit's, both summed over the frame's islands.\n")
+                 "bpp's time over its limit's, both summed over the frame's islands. Converged: frames on whose every "
+                 "island bpp's status is `converged` (all frames). In brackets after each verdict: the gap, the measured "
+                 "value relative to the target.\n")
     lines.append("| scene-regime | bpp vs bpp-chol | target | verdict | frames < 1× | bpp vs dantzig | target | verdict | "
-                 "bpp/limit median | p95 | target (median ≤ 2) | bpp converged | target ≥ 99 % |")
+                 "bpp/limit median | p95 | target (median ≤ 2) | bpp converged (frames) | target ≥ 99 % |")
     lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     missed = []
     for regime, _ in REGIMES:
         for scene in SCENES:
             group = f"{scene}-{regime}"
             islands = bench.get(group, {})
-            frames = [f for f in frames_of(islands).values() if frame_is_tight(f)]
+            frames = having([f for f in frames_of(islands).values() if frame_is_tight(f)], "bpp-chol", "bpp", "dantzig")
             chol = mean([f["bpp-chol"]["time_us"] for f in frames])
             bpp = mean([f["bpp"]["time_us"] for f in frames])
             dz = mean([f["dantzig"]["time_us"] for f in frames])
@@ -263,20 +304,22 @@ def targets(lines, bench):
             ratios = [f["bpp"]["time_us"] / f["bpp"]["limit_us"] for f in frames_of(islands).values()
                       if "bpp" in f and f["bpp"]["limit_us"] > 0]
             med, p95 = quantile(ratios, 0.5), quantile(ratios, 0.95)
-            rows = [i["bpp"] for i in islands.values() if "bpp" in i]
-            conv = 100.0 * sum(r["status"] == "converged" for r in rows) / len(rows) if rows else math.nan
-            for ok, what in ((ok_chol, f"bpp vs bpp-chol {fmt_x(s_chol)} < {t_chol}×"),
-                             (ok_dz, f"bpp vs dantzig {fmt_x(s_dz)} (target {'≥ 10×' if t_dz > 1 else '> 1×'})"),
-                             (med <= 2.0, f"bpp/limit median {med:.2f} > 2"), (conv >= 99.0, f"convergence {conv:.1f} % < 99 %")):
-                if not ok and frames:
+            bpp_frames = [f for f in frames_of(islands).values() if "bpp" in f]
+            conv = 100.0 * sum(f["bpp"]["converged"] for f in bpp_frames) / len(bpp_frames) if bpp_frames else math.nan
+            for ok, what, needs_tight in ((ok_chol, f"bpp vs bpp-chol {fmt_x(s_chol)} < {t_chol}×", True),
+                                          (ok_dz, f"bpp vs dantzig {fmt_x(s_dz)} (target {'≥ 10×' if t_dz > 1 else '> 1×'})", True),
+                                          (med <= 2.0, f"bpp/limit median {med:.2f} > 2", False),
+                                          (conv >= 99.0, f"convergence {conv:.1f} % of frames < 99 %", False)):
+                if not ok and (frames or not needs_tight):
                     missed.append(f"{group}: {what}")
             if not frames:
                 missed.append(f"{group}: speed-up targets not measured (no captured frame with tight rows; "
                               "the full mode captures more frames)")
             have = bool(frames)
-            lines.append(f"| {group} | {fmt_x(s_chol)} | ≥ {t_chol}× | {verdict(ok_chol, have)} | {slower}/{len(frames)} | "
-                         f"{fmt_x(s_dz)} | {'≥ 10×' if t_dz > 1 else '> 1×'} | {verdict(ok_dz, have)} | {med:.2f} | {p95:.2f} | "
-                         f"{verdict(med <= 2.0)} | {conv:.1f} % | {verdict(conv >= 99.0)} |")
+            lines.append(f"| {group} | {fmt_x(s_chol)} | ≥ {t_chol}× | {verdict(ok_chol, have, gap(s_chol, t_chol))} | "
+                         f"{slower}/{len(frames)} | {fmt_x(s_dz)} | {'≥ 10×' if t_dz > 1 else '> 1×'} | "
+                         f"{verdict(ok_dz, have, gap(s_dz, t_dz))} | {med:.2f} | {p95:.2f} | {verdict(med <= 2.0, True, gap(med, 2.0))} | "
+                         f"{conv:.1f} % of {len(bpp_frames)} | {verdict(conv >= 99.0, True, gap(conv, 99.0))} |")
     lines.append("")
     residual_target(lines, bench, missed)
     return missed
@@ -296,7 +339,7 @@ def headline(lines, bench):
             islands.extend(i["bpp"] for i in bench.get(f"{scene}-{regime}", {}).values() if "bpp" in i)
 
         def ratio(method, frames):
-            return quantile([f[method]["time_us"] / f["bpp"]["time_us"] for f in frames if method in f], 0.5)
+            return quantile([f[method]["time_us"] / f["bpp"]["time_us"] for f in frames if method in f and f["bpp"]["time_us"] > 0], 0.5)
 
         limit = quantile([f["bpp"]["time_us"] / f["bpp"]["limit_us"] for f in every if f["bpp"]["limit_us"] > 0], 0.5)
         conv = 100.0 * sum(r["status"] == "converged" for r in islands) / len(islands) if islands else math.nan
@@ -342,6 +385,108 @@ def residual_target(lines, bench, missed):
     lines.append("")
 
 
+def accuracy(lines, bench, missed):
+    lines.append("### Accuracy: rows without friction, and friction bound consistency\n")
+    lines.append("Per island. *Non-friction residual*: the relative natural residual over the rows with findex < 0, where "
+                 "every method solves the same fixed-bound conditions (bench_corpus's nonfriction_residual). "
+                 "*Friction error*: max over friction rows of max(0, |x_t| − μ x_n) (Result::friction_error). "
+                 "Target: bpp no worse than dantzig on the first, island by island: bpp ≤ max(dantzig, 1e-9), i.e. both "
+                 "below the solver's relative tolerance (Options::tolerance = 1e-9) count as equal; the column *bpp > dantzig* "
+                 "counts the islands where bpp's is larger at all, rounding included. Second target: far below dantzig's. "
+                 "bpp (Frozen friction) has dantzig's semantics and so its friction error; only bpp-consistent can meet it, "
+                 "and the verdict is bpp-consistent's max ≤ 1e-3 × dantzig's max (n/a where dantzig's answers are consistent).\n")
+    lines.append("| scene-regime | islands | bpp max | dantzig max | bpp > dantzig | bpp > max(dantzig, 1e-9) | verdict | "
+                 "friction error median / max: dantzig | bpp | bpp-consistent | verdict |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    for regime, _ in REGIMES:
+        for scene in SCENES:
+            group = f"{scene}-{regime}"
+            islands = [i for i in bench.get(group, {}).values() if "bpp" in i and "dantzig" in i]
+            if not islands:
+                lines.append(f"| {group} | 0 | | | | | n/a | | | | |")
+                continue
+            bpp = [num(i["bpp"]["nonfriction_residual"]) for i in islands]
+            dz = [num(i["dantzig"]["nonfriction_residual"]) for i in islands]
+            larger = sum(b > d for b, d in zip(bpp, dz))
+            worse = sum(b > max(d, 1e-9) for b, d in zip(bpp, dz))
+            ok = worse == 0
+            if not ok:
+                missed.append(f"{group}: bpp's non-friction residual above max(dantzig's, 1e-9) on {worse} of {len(islands)} islands")
+
+            def fe(method):
+                values = finite([num(i[method]["friction_error"]) for i in islands if method in i])
+                return (quantile(values, 0.5), max(values)) if values else (math.nan, math.nan)
+            fd, fb, fc = fe("dantzig"), fe("bpp"), fe("bpp-consistent")
+            friction_ok = fc[1] <= 1e-3 * fd[1]
+            if fd[1] > 0 and not friction_ok:
+                missed.append(f"{group}: bpp-consistent's max friction error {fmt_e(fc[1])} not far below dantzig's {fmt_e(fd[1])}")
+            friction_verdict = verdict(friction_ok) if fd[1] > 0 else "n/a (dantzig consistent)"
+            lines.append(f"| {group} | {len(islands)} | {fmt_e(max(finite(bpp) or [math.nan]))} | {fmt_e(max(finite(dz) or [math.nan]))} | "
+                         f"{larger} | {worse} | {verdict(ok)} | {fmt_e(fd[0])} / {fmt_e(fd[1])} | {fmt_e(fb[0])} / {fmt_e(fb[1])} | "
+                         f"{fmt_e(fc[0])} / {fmt_e(fc[1])} | {friction_verdict} |")
+    lines.append("")
+
+
+def peer_methods(bench):
+    """Peer method names present in the CSV, direct ones first, iterative ones by sweep count."""
+    names = {m for group in bench.values() for island in group.values() for m in island if is_peer(m)}
+    def key(name):
+        base, _, sweeps = name.rpartition("-")
+        return (1, base, int(sweeps)) if sweeps.isdigit() else (0, name, 0)
+    return sorted(names, key=key)
+
+
+def peer_frames(islands):
+    """The frames (as frames_of gives them) on which some peer ran, or every frame when none did."""
+    frames = frames_of(islands)
+    ran = {frame for (frame, _), methods in islands.items() if any(is_peer(m) for m in methods)}
+    return [frames[k] for k in sorted(ran or frames)]
+
+
+def peers_table(lines, bench):
+    peers = peer_methods(bench)
+    lines.append("## Peers side by side\n")
+    if not peers:
+        lines.append("Not measured: bench_corpus was built without the peers (`make deps-peers` installs DART, Bullet and "
+                     "Siconos from Debian; bench/peers builds the adapters when they are found), or --no-peers was given.\n")
+        return
+    lines.append("Same islands, same process, interleaved with ode_bpp's methods, on the frames where the peers ran "
+                 "(a subset, see the header). Each cell: median over frames of the method's frame time divided by bpp's "
+                 "on the same frame, then the median relative natural residual (friction bounds from the answer's own "
+                 "normals, the same function for every method); below it failed islands (the peer said so) and frames "
+                 "left out (skipped islands). DART's and Bullet's Dantzig and PGS take friction through findex as ODE "
+                 "does; Bullet's Lemke and Siconos' solvers only know fixed bounds, so friction is frozen for them as in "
+                 "ODE's Dantzig: a first solve with the friction rows at 0, then bounds ±μ x_n from those normals for a second solve.\n")
+    methods = ["bpp", "bpp-consistent", "dantzig", "pgs-35", "pgs-300"] + peers
+    for regime, label in REGIMES:
+        lines.append(f"### {label}\n")
+        lines.append("| method | " + " | ".join(SCENES) + " |")
+        lines.append("|---|" + "---|" * len(SCENES))
+        per_scene = {scene: peer_frames(bench.get(f"{scene}-{regime}", {})) for scene in SCENES}
+        for m in methods:
+            cells = []
+            for scene in SCENES:
+                frames = having(per_scene[scene], "bpp", m)
+                islands = [i[m] for i in bench.get(f"{scene}-{regime}", {}).values() if m in i]
+                failed = sum(r["status"] == "failed" for r in islands)
+                ran = {k for k, i in bench.get(f"{scene}-{regime}", {}).items() if m in i}
+                frames_ran = {k[0] for k in ran}
+                left_out = len(frames_ran) - len(frames) if frames_ran else 0
+                if not frames:
+                    cells.append("–" if not islands else f"skipped on all {len(frames_ran)} frames")
+                    continue
+                ratio = quantile([f[m]["time_us"] / f["bpp"]["time_us"] for f in frames if f["bpp"]["time_us"] > 0], 0.5)
+                res = quantile([f[m]["residual"] for f in frames], 0.5)
+                extra = []
+                if failed:
+                    extra.append(f"{failed} failed")
+                if left_out > 0 and is_peer(m):
+                    extra.append(f"{left_out} fr. left out")
+                cells.append(f"{fmt_x(ratio)} · {fmt_e(res)}" + (f"<br>{', '.join(extra)}" if extra else ""))
+            lines.append(f"| {m} | " + " | ".join(cells) + " |")
+        lines.append("")
+
+
 # ------------------------------------------------------------------------------------------
 # charts
 
@@ -377,26 +522,84 @@ def write_dat(charts, name, rows):
 
 
 def chart_work_precision(charts, bench, regime):
-    body = [f"set multiplot layout 2,3 title 'Work-precision, {gq(dict(REGIMES)[regime])} (median frame; residual floor {RESIDUAL_FLOOR:g})'",
-            "set logscale xy", "set xlabel 'solve time per frame (ms)'", "set ylabel 'relative natural residual (max over islands)'",
-            "set key bottom left font ',8'", "set format y '%.0e'"]
+    """One panel per scene: x the median frame time, y the median over frames of the relative natural
+    residual (max over the frame's islands); direct methods are points, PGS (ours and the peers')
+    curves over sweep counts. With peers, only the frames they ran on, so that every point and curve
+    comes from the same frames (a method missing a frame, e.g. Lemke above its size limit, is drawn
+    from the frames it has, and its key says how many)."""
+    peers = peer_methods(bench)
+    subset = " frames where the peers ran;" if peers else ""
+    body = [f"set multiplot layout 2,3 margins 0.06,0.84,0.08,0.9 spacing 0.06,0.12 "
+            f"title 'Work-precision, {gq(dict(REGIMES)[regime])} (median frame;{subset} residual floor {RESIDUAL_FLOOR:g})'",
+            "set logscale xy", "set xlabel 'solve time per frame (ms)'", "set ylabel 'relative natural residual'",
+            "set format y '%.0e'", "set offsets graph 0.02, graph 0.02, graph 0.1, graph 0.02"]
+    direct = DIRECT + [m for m in PEER_DIRECT if m in peers]
+    curves = [("pgs", PGS)] + [(base, [m for m in peers if m.rpartition("-")[0] == base]) for base in PEER_ITERATIVE]
+    # one style per method on every panel, so that a single key (drawn once, right of the panels) serves all
+    palette = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"]
+    style = {m: f"pt {k + 4} ps 1.6 lc rgb '{palette[k % len(palette)]}'" for k, m in enumerate(direct)}
+    curve_colors = ["#000000", "#6a3d9a", "#b15928", "#e7298a"]  # ours solid black, the peers dashed
+    style.update({base: f"pt 7 ps 0.8 lw 2 {'dt 2 ' if k else ''}lc rgb '{curve_colors[k % len(curve_colors)]}'"
+                  for k, (base, _) in enumerate(curves)})
+    panels = []
     for scene in SCENES:
-        frames = list(frames_of(bench.get(f"{scene}-{regime}", {})).values())
+        frames = peer_frames(bench.get(f"{scene}-{regime}", {}))
         plots = []
-        for k, m in enumerate(DIRECT):
-            t = quantile([f[m]["time_us"] / 1000 for f in frames if m in f], 0.5)
-            r = max(RESIDUAL_FLOOR, quantile([f[m]["residual"] for f in frames if m in f], 0.5))
+        for k, m in enumerate(direct):
+            have = having(frames, m)
+            if not have:
+                continue
+            t = quantile([f[m]["time_us"] / 1000 for f in have], 0.5)
+            r = max(RESIDUAL_FLOOR, quantile([f[m]["residual"] for f in have], 0.5))
             path = write_dat(charts, f"wp-{scene}-{regime}-{m}.dat", [(t, r)])
-            plots.append(f"'{path}' using 1:2 with points pt {k + 5} ps 2 title '{m}'")
-        pgs = []
-        for m in PGS:
-            t = quantile([f[m]["time_us"] / 1000 for f in frames if m in f], 0.5)
-            r = max(RESIDUAL_FLOOR, quantile([f[m]["residual"] for f in frames if m in f], 0.5))
-            pgs.append((t, r, m.split("-")[1]))
-        path = write_dat(charts, f"wp-{scene}-{regime}-pgs.dat", pgs)
-        plots.append(f"'{path}' using 1:2 with linespoints lw 2 title 'pgs (10..1000 sweeps)', '' using 1:2:3 with labels offset 1,1 font ',7' notitle")
-        body.append(f"set title '{scene}'\nplot " + ", ".join(plots))
+            plots.append(f"'{path}' using 1:2 with points {style[m]} title '{m}'")
+        for base, members in curves:
+            points = []
+            for m in members:
+                have = having(frames, m)
+                if have:
+                    t = quantile([f[m]["time_us"] / 1000 for f in have], 0.5)
+                    r = max(RESIDUAL_FLOOR, quantile([f[m]["residual"] for f in have], 0.5))
+                    points.append((t, r, m.rpartition("-")[2]))
+            if not points:
+                continue
+            path = write_dat(charts, f"wp-{scene}-{regime}-{base}.dat", points)
+            plots.append(f"'{path}' using 1:2 with linespoints {style[base]} title '{base} (sweeps)', "
+                         f"'' using 1:2:3 with labels offset 0.8,0.8 font ',6' notitle")
+        panels.append((scene, plots))
+    widest = max(range(len(panels)), key=lambda k: len(panels[k][1]))
+    for k, (scene, plots) in enumerate(panels):
+        key = "set key at screen 0.995,0.88 right top font ',9' spacing 1.2" if k == widest else "unset key"
+        body.append(f"{key if plots else 'unset key'}\n{panel(scene, plots, 'set logscale xy')}")
     run_gnuplot(charts, f"work-precision-{regime}", "\n".join(body))
+
+
+def chart_fig5(charts, out_dir):
+    """Fig. 5: per scene, the largest island's pattern before and after Cuthill-McKee, with the
+    skyline edge (first column of each row's envelope) drawn over it. Returns the scenes drawn."""
+    summary = os.path.join(out_dir, "fig5.csv")
+    if not os.path.exists(summary):
+        return []
+    with open(summary, newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    drawn = []
+    for row in rows:
+        scene, n = row["scene"], int(row["n"])
+        prefix = os.path.join(out_dir, "fig5", scene)
+        if not os.path.exists(f"{prefix}-before.dat"):
+            continue
+        panels = []
+        for tag, title, env in (("before", "original order", row["envelope_original"]),
+                                ("after", "Cuthill-McKee order", row["envelope_cm"])):
+            panels.append(f"set title '{title}: envelope {env} entries'\n"
+                          f"plot '{prefix}-{tag}.dat' using 1:2 with points pt 5 ps 0.25 lc rgb '#1f4e9c' notitle, "
+                          f"'{prefix}-sky-{tag}.dat' using 2:1 with steps lw 1.5 lc rgb '#d62728' title 'skyline (envelope edge)'")
+        body = (f"set multiplot layout 1,2 title 'Fig. 5: {scene}, largest island (n = {n}, {row['nonzeros']} non-zeros)'\n"
+                f"set size ratio -1\nset xrange [-0.5:{n - 0.5}]\nset yrange [{n - 0.5}:-0.5]\nset xlabel 'column'\n"
+                f"set ylabel 'row'\nset key bottom left font ',8'\n" + "\n".join(panels))
+        run_gnuplot(charts, f"fig5-{scene}", body)
+        drawn.append(row)
+    return drawn
 
 
 def chart_fig7(charts, bench, regime):
@@ -407,10 +610,19 @@ def chart_fig7(charts, bench, regime):
         plots = []
         for m in TABLE3_METHODS:
             rows = [(frame, frames[frame][m]["time_us"] / 1000) for frame in sorted(frames) if m in frames[frame]]
-            path = write_dat(charts, f"fig7-{scene}-{regime}-{m}.dat", rows)
-            plots.append(f"'{path}' using 1:2 with lines lw 1.5 title '{m}'")
-        body.append(f"set title '{scene}'\nplot " + ", ".join(plots))
+            if rows:
+                path = write_dat(charts, f"fig7-{scene}-{regime}-{m}.dat", rows)
+                plots.append(f"'{path}' using 1:2 with lines lw 1.5 title '{m}'")
+        body.append(panel(scene, plots, "set logscale y"))
     run_gnuplot(charts, f"fig7-{regime}", "\n".join(body))
+
+
+def panel(title, plots, scale=""):
+    """One multiplot panel, or an empty one saying 'no data' (gnuplot stops on a plot without
+    points); scale: the chart's logscale command, restored after an empty panel."""
+    if plots:
+        return f"set title '{gq(title)}'\nplot " + ", ".join(plots)
+    return f"set title '{gq(title)}: no data'\nunset logscale\nplot [0:1] [0:1] NaN notitle\n{scale}"
 
 
 def chart_fig3(charts, out_dir):
@@ -419,9 +631,11 @@ def chart_fig3(charts, out_dir):
     for regime, label in REGIMES:
         plots = []
         for scene in SCENES:
-            path = write_dat(charts, f"fig3-{scene}-{regime}.dat", load_tight_fraction(out_dir, scene, regime))
-            plots.append(f"'{path}' using 1:2 with lines lw 1.5 title '{scene}'")
-        body.append(f"set title '{gq(label)}'\nplot " + ", ".join(plots))
+            rows = load_tight_fraction(out_dir, scene, regime)
+            if rows:
+                path = write_dat(charts, f"fig3-{scene}-{regime}.dat", rows)
+                plots.append(f"'{path}' using 1:2 with lines lw 1.5 title '{scene}'")
+        body.append(panel(label, plots))
     run_gnuplot(charts, "fig3", "\n".join(body))
 
 
@@ -452,17 +666,90 @@ def chart_fig4(charts, out_dir):
 # ------------------------------------------------------------------------------------------
 
 
+def factor_target(lines, bench, missed):
+    lines.append("### Factor error within the paper's Table 4\n")
+    lines.append("bpp's largest factor error per scene against the largest of the paper's Table 4 (with skyline) for that scene.\n")
+    lines.append("| scene-regime | islands with tight rows | bpp max | paper max | verdict |")
+    lines.append("|---|---|---|---|---|")
+    for regime, _ in REGIMES:
+        for scene in SCENES:
+            group = f"{scene}-{regime}"
+            errors = finite([num(i["bpp"]["factor_error"]) for i in bench.get(group, {}).values()
+                             if "bpp" in i and int(i["bpp"]["tight"] or 0) > 0])
+            paper = PAPER_T4[scene][1][1]
+            if not errors:
+                lines.append(f"| {group} | 0 | – | {fmt_e(paper)} | n/a |")
+                continue
+            ok = max(errors) <= paper
+            if not ok:
+                missed.append(f"{group}: bpp's max factor error {fmt_e(max(errors))} above the paper's {fmt_e(paper)}")
+            lines.append(f"| {group} | {len(errors)} | {fmt_e(max(errors))} | {fmt_e(paper)} | {verdict(ok)} |")
+    lines.append("")
+
+
+def section(lines, failures, name, function, *args):
+    """Runs one part of the report; if it breaks (missing or malformed inputs), the report says so
+    at that place and in its list of failures, and the other parts still come out."""
+    try:
+        return function(*args)
+    except Exception as error:  # noqa: BLE001 -- any failure of one section is reported, not fatal
+        lines.append(f"\n**{name}: not produced** ({type(error).__name__}: {error}).\n")
+        failures.append(f"report section '{name}': {type(error).__name__}: {error}")
+        return None
+
+
+def read_failures(out_dir):
+    path = os.path.join(out_dir, "failures.txt")
+    if not os.path.exists(path):
+        return []
+    with open(path) as handle:
+        return [line.strip() for line in handle if line.strip()]
+
+
+def charts_section(lines, failures, charts, out_dir, bench):
+    lines.append("## Charts\n")
+    for regime, label in REGIMES:
+        section(lines, failures, f"work-precision {regime}", chart_work_precision, charts, bench, regime)
+        section(lines, failures, f"Fig. 7 {regime}", chart_fig7, charts, bench, regime)
+        lines.append(f"- {label}: work–precision ![](charts/work-precision-{regime}.png), Fig. 7 ![](charts/fig7-{regime}.png)")
+    section(lines, failures, "Fig. 3", chart_fig3, charts, out_dir)
+    lines.append("- Fig. 3 (tight % over time): ![](charts/fig3.png)")
+    if section(lines, failures, "Fig. 4", chart_fig4, charts, out_dir):
+        lines.append("- Fig. 4 (bench_fig4, random SPD matrices): ![](charts/fig4.png)")
+    else:
+        lines.append("- Fig. 4: not run (needs bench/bench_fig4 built; see the failures)")
+    drawn = section(lines, failures, "Fig. 5", chart_fig5, charts, out_dir) or []
+    if drawn:
+        lines.append("- Fig. 5 (largest island per scene at CFM 1e-10, before and after Cuthill-McKee, with the skyline; "
+                     "envelope = stored entries of the lower skyline factor):\n")
+        lines.append("| scene | n | non-zeros | envelope original | envelope CM | envelope RCM | bandwidth original | bandwidth CM | chart |")
+        lines.append("|---|---|---|---|---|---|---|---|---|")
+        for row in drawn:
+            lines.append(f"| {row['scene']} | {row['n']} | {row['nonzeros']} | {row['envelope_original']} | {row['envelope_cm']} | "
+                         f"{row['envelope_rcm']} | {row['bandwidth_original']} | {row['bandwidth_cm']} | "
+                         f"![](charts/fig5-{row['scene']}.png) |")
+    else:
+        lines.append("- Fig. 5: not drawn (bench_fig5 did not run; see the failures)")
+    lines.append("")
+
+
 def main():
     out_dir, mode = sys.argv[1], sys.argv[2] if len(sys.argv) > 2 else "full"
     charts = os.path.join(out_dir, "charts")
     os.makedirs(os.path.join(charts, "data"), exist_ok=True)
-    bench = load_bench(os.path.join(out_dir, "bench.csv"))
+    failures = read_failures(out_dir)
+    bench_path = os.path.join(out_dir, "bench.csv")
+    bench = load_bench(bench_path) if os.path.exists(bench_path) else {}
+    if not bench:
+        failures.append("bench.csv missing or empty: no table or chart from the corpus")
     files = sum(len(v) for v in bench.values())
     lines = ["# ode-bpp benchmark report\n",
              f"Mode: **{mode}**. Corpus: {files} captured islands in {len(bench)} scene/regime groups "
              "(ode-bpp-demo with bpp, `--capture-every`), solved by bench_corpus in one process, methods interleaved "
              "per file after a warm-up, median of the repetitions. Times are wall-clock on a shared, noisy machine: "
-             "compare ratios within this run, not absolute values across runs.\n",
+             "compare ratios within this run, not absolute values across runs. Every time includes what the call "
+             "does besides solving: for ode_bpp's methods the residuals solve() reports, for the peers their copies "
+             "of A and the bounds into their own layout.\n",
              "bpp's *limit* is bpp re-solved from its own final index set with one pivot step "
              "(Options::warm_start, max_pivots = 1): ordering + factoring A + taking T's rows out + one solve, "
              "an upper bound of the ideal one Cholesky of A_FF plus one solve. Where that re-solve does not certify the "
@@ -472,35 +759,30 @@ def main():
         with open(meta) as handle:
             lines.extend(f"- {line.strip()}" for line in handle if line.strip())
         lines.append("")
-    headline(lines, bench)
-    missed = targets(lines, bench)
-    lines.append("### Missed targets\n")
-    lines.extend([f"- {m}" for m in missed] or ["- none"])
+    body = []
+    section(body, failures, "headline", headline, body, bench)
+    missed = section(body, failures, "targets", targets, body, bench) or []
+    section(body, failures, "accuracy", accuracy, body, bench, missed)
+    section(body, failures, "factor error target", factor_target, body, bench, missed)
+    body.append("### Missed targets\n")
+    body.extend([f"- {m}" for m in missed] or ["- none"])
+    body.append("")
+    section(body, failures, "peers", peers_table, body, bench)
+    body.append("## Tables\n")
+    for regime, _ in REGIMES:
+        section(body, failures, f"Table 3 {regime}", table3, body, bench, regime)
+    for regime, _ in REGIMES:
+        section(body, failures, f"Table 4 {regime}", table4, body, bench, regime)
+    section(body, failures, "convergence", convergence, body, bench)
+    section(body, failures, "whole step", whole_step, body, out_dir)
+    section(body, failures, "callgrind", callgrind, body, out_dir)
+    charts_section(body, failures, charts, out_dir, bench)
+    lines.append("## Failures during the run\n")
+    lines.extend([f"- {f}" for f in failures] or ["- none: every step ran"])
     lines.append("")
-    lines.append("## Tables\n")
-    for regime, _ in REGIMES:
-        table3(lines, bench, regime)
-    for regime, _ in REGIMES:
-        table4(lines, bench, regime)
-    convergence(lines, bench)
-    whole_step(lines, out_dir)
-    callgrind(lines, out_dir)
-    lines.append("## Charts\n")
-    for regime, label in REGIMES:
-        chart_work_precision(charts, bench, regime)
-        chart_fig7(charts, bench, regime)
-        lines.append(f"- {label}: work–precision ![](charts/work-precision-{regime}.png), Fig. 7 ![](charts/fig7-{regime}.png)")
-    chart_fig3(charts, out_dir)
-    lines.append("- Fig. 3 (tight % over time): ![](charts/fig3.png)")
-    if chart_fig4(charts, out_dir):
-        lines.append("- Fig. 4 (bench_fig4): ![](charts/fig4.png)")
-    else:
-        lines.append("- Fig. 4: not run (needs bench/bench_fig4 built)")
-    lines.append("\nNot measured: peers (DART's and Bullet's Dantzig and PGS, Siconos): not wired in (see NOTES.md for how "
-                 "they would be called on the same files).\n")
     with open(os.path.join(out_dir, "report.md"), "w") as handle:
-        handle.write("\n".join(lines))
-    print(f"make_report: {os.path.join(out_dir, 'report.md')}; {len(missed)} target(s) missed")
+        handle.write("\n".join(lines + body))
+    print(f"make_report: {os.path.join(out_dir, 'report.md')}; {len(missed)} target(s) missed, {len(failures)} failure(s)")
 
 
 if __name__ == "__main__":

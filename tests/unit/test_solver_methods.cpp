@@ -88,6 +88,25 @@ TEST(SolverAgreement, ChainIslandWithStructureMatchesDantzig) {
     }
 }
 
+/// Options::order_tight_last off: a warm start no longer changes the ordering (Cuthill-McKee or
+/// its reverse only); on, the ordering may differ but the answer does not.
+TEST(SolverOrdering, TightLastCanBeTurnedOff) {
+    const auto p = problems::chain_mlcp(30, 12, 100, 1e-6);
+    std::vector<double> cold_x, warm_x, plain_x;
+    const Result cold = run(p, Method::Bpp, cold_x);
+    ASSERT_EQ(cold.status, Status::Converged);
+    ASSERT_GT(cold.tight, 0);
+    Options o;
+    o.warm_start = cold.states;
+    o.order_tight_last = false;
+    const Result plain = run(p, Method::Bpp, plain_x, o);
+    EXPECT_EQ(plain.ordering, cold.ordering);
+    o.order_tight_last = true;
+    const Result warm = run(p, Method::Bpp, warm_x, o);
+    ASSERT_EQ(warm.status, Status::Converged);
+    EXPECT_LT(max_abs_diff(warm_x, cold_x), 1e-9 * inf_norm(cold_x));
+}
+
 /// Bpp refactors small islands densely (Options::dense_island_rows); with the threshold at 0 the
 /// same islands go through the skyline strategy, and both answers pass the same certificate.
 TEST(SolverSmallIslands, DenseAndSkylinePathsOfBppAgree) {

@@ -37,7 +37,6 @@ namespace ode_bpp {
 struct WorldSettings {
     Options options;                ///< friction mode, budgets, tolerances (method is ignored)
     bool warm_start = true;         ///< start each island from the previous step's index sets
-    bool order_likely_tight_last = true;  ///< Bpp only: previous step's tight rows go last
 };
 
 /// Replaces the settings of a world (thread-safe). Worlds without settings use the defaults.

@@ -139,6 +139,10 @@ struct Options {
     int pgs_iterations = 35;
     /// Warm start: initial index set in original row order (n entries), or empty for all free.
     std::vector<RowState> warm_start;
+    /// Bpp with a warm start: also consider orderings with the warm start's tight rows last
+    /// (deleting them then touches few columns), priced by the cost model against the envelope
+    /// they may widen (pivoting/ordering_choice.h). False: Cuthill-McKee or its reverse only.
+    bool order_tight_last = true;
     /// Bpp and BppSky: the symmetric row permutation to factor in (perm[new] = old, n entries),
     /// e.g. Result::ordering of the same island's previous step, skipping the ordering (a third of
     /// a warm 39-row chain solve); empty, or not a permutation of 0..n-1: computed afresh.

@@ -69,7 +69,9 @@ public:
         const Method strategy = strategy_method();
         const bool given = (strategy == Method::Bpp || strategy == Method::BppSky) &&
                            ordering::is_permutation(o_.ordering, p_.n);
-        perm_ = given ? o_.ordering : choose_ordering(strategy, p_, A_original_, o_.warm_start);
+        static const std::vector<RowState> kNoHint;
+        perm_ = given ? o_.ordering
+                      : choose_ordering(strategy, p_, A_original_, o_.order_tight_last ? o_.warm_start : kNoHint);
         Ap_ = A_original_.permuted(perm_);
         solver_ = make_free_solver(strategy, Ap_);
         Result r;

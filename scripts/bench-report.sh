@@ -79,7 +79,7 @@ demo() {
 
 PEER_ARGS=()
 PEER_LIST=none
-if [[ $PEERS == 1 ]] && "$HARNESS" --list-peers | grep -qv '^none'; then
+if [[ $PEERS == 1 ]] && grep -qv '^none' <<<"$("$HARNESS" --list-peers)"; then
   PEER_LIST=$("$HARNESS" --list-peers | sed 's/-10$/-<k>/' | sort -u | paste -sd' ')
   PEER_ARGS=(--peers all --peer-iterations "$PEER_SWEEPS" --peer-every "$PEER_EVERY" --peer-repeat "$PEER_REPEAT")
 fi

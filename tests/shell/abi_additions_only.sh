@@ -13,9 +13,9 @@ soname() { readelf -d "$1" | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p'; }
 [ "$(soname "$ours")" = "$(soname "$debian")" ] || { echo "FAIL: soname $(soname "$ours") != $(soname "$debian")"; exit 1; }
 
 report=$(abidiff "$debian" "$ours" || true)
-echo "$report" | head -4
-echo "$report" | grep -q "^Functions changes summary: 0 Removed, 0 Changed" || { echo "FAIL: functions removed or changed"; echo "$report"; exit 1; }
-echo "$report" | grep -q "^Variables changes summary: 0 Removed, 0 Changed" || { echo "FAIL: variables removed or changed"; echo "$report"; exit 1; }
+head -4 <<<"$report"
+grep -q "^Functions changes summary: 0 Removed, 0 Changed" <<<"$report" || { echo "FAIL: functions removed or changed"; echo "$report"; exit 1; }
+grep -q "^Variables changes summary: 0 Removed, 0 Changed" <<<"$report" || { echo "FAIL: variables removed or changed"; echo "$report"; exit 1; }
 
 # every exported C (unmangled) symbol of Debian's library is still exported
 c_symbols() { nm -D --defined-only "$1" | awk '{print $3}' | grep -v '^_Z' | sort -u; }

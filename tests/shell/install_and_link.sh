@@ -12,7 +12,8 @@ out=$("$app/hello_ode" bpp)
 echo "cmake package: $out"
 grep -q "solver=bpp" <<<"$out" || { echo "FAIL: not solved by bpp"; exit 1; }
 # the app runs against the staged libode, not Debian's
-ldd "$app/hello_ode" | grep -q "$stage/lib/libode.so.8" || { echo "FAIL: wrong libode"; ldd "$app/hello_ode"; exit 1; }
+# a here-string, not a pipe: grep -q closing early would SIGPIPE ldd and fail under pipefail
+grep -qF "$stage/lib/libode.so.8" <<<"$(ldd "$app/hello_ode")" || { echo "FAIL: wrong libode"; ldd "$app/hello_ode"; exit 1; }
 
 export PKG_CONFIG_PATH=$stage/lib/pkgconfig
 g++ -std=c++17 "$S/tests/link_example/hello_ode.cpp" -o "$B/test-install/hello_pc" $(pkg-config --cflags --libs ode_bpp)

@@ -11,6 +11,7 @@ namespace {
 
 using ode_bpp::bench::PeerStatus;
 using ode_bpp::peers::testing::agrees;
+using ode_bpp::peers::testing::odes_dantzig_answer;
 namespace problems = ode_bpp::problems;
 
 std::vector<double> dart_answer(const problems::OwnedProblem& p, PeerStatus expected, int sweeps = 0) {
@@ -32,10 +33,9 @@ TEST(DartPeers, DantzigMatchesEnumerationWithoutFriction) {
 TEST(DartPeers, DantzigMatchesOdesDantzigWithFriction) {
     for (std::uint64_t seed = 1; seed <= 5; ++seed) {
         const problems::OwnedProblem p = problems::random_boxed_mlcp(12, 1, 3, 1e2, seed);
-        ode_bpp::Options options;
-        options.method = ode_bpp::Method::Dantzig;
-        std::vector<double> ode(static_cast<std::size_t>(p.n));
-        ASSERT_EQ(ode_bpp::solve(p, options, ode.data()).status, ode_bpp::Status::Converged);
+        ode_bpp::Status status;
+        const std::vector<double> ode = odes_dantzig_answer(p, &status);
+        ASSERT_EQ(status, ode_bpp::Status::Converged);
         EXPECT_TRUE(agrees(dart_answer(p, PeerStatus::Solved), ode, 1e-9)) << "seed " << seed;
     }
 }

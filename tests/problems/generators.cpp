@@ -33,6 +33,17 @@ void copy_matrix(const Mat& M, OwnedProblem& p) {
         for (int j = 0; j < p.n; ++j) p.a(i, j) = M(i, j);
 }
 
+/// ODE's MLCP of one step (step.cpp): A = J M^-1 J^T + (cfm / h) I, symmetrized, and
+/// b = -J (v / h + M^-1 f). J: rows x dofs; Minv, v, f: dofs. Writes p.A and p.b.
+void fill_from_dynamics(const Mat& J, const Eigen::VectorXd& Minv, const Eigen::VectorXd& v, const Eigen::VectorXd& f,
+                        double cfm, double h, OwnedProblem& p) {
+    Mat A = J * Minv.asDiagonal() * J.transpose();
+    A.diagonal().array() += cfm / h;
+    copy_matrix(0.5 * (A + A.transpose()), p);
+    const Eigen::VectorXd rhs = -J * (v / h + Minv.asDiagonal() * f);
+    for (int i = 0; i < p.n; ++i) p.b[i] = rhs[i];
+}
+
 /// The 3x3 matrix [r]x with [r]x v = r x v.
 Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& r) {
     Eigen::Matrix3d c;
@@ -136,11 +147,7 @@ OwnedProblem chain_mlcp(int links, int contacts, double mass_ratio, double cfm) 
         p.block_body.insert(p.block_body.end(), {body, -1});
     }
     p.block_row.push_back(rows);
-    Mat A = J * Minv.asDiagonal() * J.transpose();
-    A.diagonal().array() += cfm / h;
-    copy_matrix(0.5 * (A + A.transpose()), p);
-    const Eigen::VectorXd rhs = -J * (v / h + Minv.asDiagonal() * f);  // ODE's b (step.cpp)
-    for (int i = 0; i < rows; ++i) p.b[i] = rhs[i];
+    fill_from_dynamics(J, Minv, v, f, cfm, h, p);
     return p;
 }
 
@@ -197,11 +204,7 @@ OwnedProblem capstan_mlcp(int links, double wrap, double mu, double load_ratio, 
         p.block_body.insert(p.block_body.end(), {k, -1});
     }
     p.block_row.push_back(rows);
-    Mat A = J * Minv.asDiagonal() * J.transpose();
-    A.diagonal().array() += cfm / h;
-    copy_matrix(0.5 * (A + A.transpose()), p);
-    const Eigen::VectorXd rhs = -J * (v / h + Minv.asDiagonal() * f);  // ODE's b (step.cpp)
-    for (int i = 0; i < rows; ++i) p.b[i] = rhs[i];
+    fill_from_dynamics(J, Minv, v, f, cfm, h, p);
     return p;
 }
 

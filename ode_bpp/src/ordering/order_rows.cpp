@@ -34,11 +34,11 @@ std::vector<int> graph_order(int n, const double* A, int lda, int num_blocks, co
     return cuthill_mckee(graph_from_lower(A, lda, n), reverse);
 }
 
+}  // namespace
+
 void move_flagged_last(std::vector<int>& perm, const std::vector<char>& flagged) {
     std::stable_partition(perm.begin(), perm.end(), [&flagged](int old) { return flagged[old] == 0; });
 }
-
-}  // namespace
 
 bool is_permutation(const std::vector<int>& perm, int n) {
     if (static_cast<int>(perm.size()) != n) return false;

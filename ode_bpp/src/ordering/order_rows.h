@@ -19,6 +19,10 @@ bool is_permutation(const std::vector<int>& perm, int n);
 /// block_row: num_blocks + 1 offsets, block k owns rows block_row[k] .. block_row[k+1]-1.
 std::vector<int> expand_blocks(const std::vector<int>& block_perm, const int* block_row, int num_blocks);
 
+/// Moves the rows flagged in `flagged` (n flags, original row indices) to the end of perm
+/// (perm[new] = old), both groups keeping their relative order.
+void move_flagged_last(std::vector<int>& perm, const std::vector<char>& flagged);
+
 /// The symmetric permutation to factor A in: perm[new] = old, n entries.
 /// Graph: the block (constraint) graph when block_row and block_body are given and consistent
 /// (block_row[0] == 0, non-decreasing, block_row[num_blocks] == n; see block_graph), else the row

@@ -217,14 +217,6 @@ private:
         return false;
     }
 
-    /// max_k of the rows' inconsistency: how far the answer is from its own friction bounds.
-    double bound_gap(const std::vector<double>& target, const std::vector<RowState>& states,
-                     const std::vector<double>& x) const {
-        double gap = 0;
-        for (std::size_t k = 0; k < target.size(); ++k) gap = std::max(gap, inconsistency(k, target, states, x));
-        return gap;
-    }
-
     std::vector<double> current_friction_bounds() const {
         std::vector<double> bound(friction_rows_.size());
         for (std::size_t k = 0; k < bound.size(); ++k) bound[k] = lcp_.hi[friction_rows_[k]];

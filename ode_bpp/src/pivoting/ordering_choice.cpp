@@ -40,12 +40,6 @@ const std::vector<int>& smaller_envelope(const SymmetricRows& A, const std::vect
     return linalg::envelope_size(A.row_profile_under(rcm)) <= linalg::envelope_size(A.row_profile_under(cm)) ? rcm : cm;
 }
 
-/// perm with the rows flagged in tight (original space) moved last, both groups in their order.
-std::vector<int> tight_last(std::vector<int> perm, const std::vector<char>& tight) {
-    std::stable_partition(perm.begin(), perm.end(), [&tight](int old) { return tight[old] == 0; });
-    return perm;
-}
-
 /// Instructions that numbering the graph costs per vertex and per edge: the two Cuthill-McKee
 /// numberings and their envelope comparison (callgrind, ODE's 6-row demo_motors island: ~6k
 /// instructions for 6 vertices and 15 edges), in units comparable to CostModel's multiply-adds.
@@ -90,7 +84,8 @@ std::vector<int> choose_ordering(Method method, const Problem& problem, const Sy
     // (contact rows couple bodies spread along the order): keep whichever prices lower.
     double best_price = warm_solve_price(A, best, tight);
     for (const std::vector<int>* base : {&cm, &rcm}) {
-        std::vector<int> candidate = tight_last(*base, tight);
+        std::vector<int> candidate = *base;
+        ordering::move_flagged_last(candidate, tight);
         const double price = warm_solve_price(A, candidate, tight);
         if (price < best_price) {
             best_price = price;

@@ -64,6 +64,10 @@ for target in fuzz_read_mlcp fuzz_solve; do
       name=$target-$kind-${hash:0:16}
       cp "$artifact" "$regressions/$name"
       echo "[fuzz] $target: $kind input saved as tests/data/fuzz-regressions/$name"
+      # where it happened, last: CI keeps only the tail of the output
+      echo "[fuzz] $target: the project's frames of the first report:"
+      awk '/ERROR: libFuzzer|ERROR: AddressSanitizer|runtime error/ {on = 1} on && / #[0-9]+ .* in (ode_bpp::|LLVMFuzzer)/ {print; if (++k == 12) exit}' \
+          "$work/$target.log" | sed -e 's/(.*) \//  \//' -e 's/^ */[fuzz]   /' | cut -c1-200
     fi
     saved=$((saved + 1))
     found=1

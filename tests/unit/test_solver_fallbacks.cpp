@@ -78,6 +78,23 @@ TEST(SolverFallback, IndefiniteMatrixIsNotSpdWithoutDantzigAndXIsZero) {
     }
 }
 
+TEST(SolverFallback, IndefiniteMatrixWithSubnormalDiagonalEndsAsNotSpd) {
+    // 1e-12 * max diag underflows to 0 here: the regularization ladder cannot rise and must stop
+    // (fuzz_solve found it retrying at shift 0 forever)
+    auto p = indefinite();
+    p.a(0, 0) = p.a(1, 1) = 5e-320;
+    for (Method m : kBppMethods) {
+        Options o;
+        o.dantzig_fallback = false;
+        std::vector<double> x = {7, 7};
+        o.method = m;
+        const Result r = solve(p, o, x.data());
+        EXPECT_EQ(r.status, Status::NotSpd) << to_string(m);
+        EXPECT_EQ(x[0], 0.0);
+        EXPECT_EQ(x[1], 0.0);
+    }
+}
+
 TEST(SolverFallback, DantzigOnItsOwnDoesNotFallBackToItself) {
     const auto p = indefinite();
     std::vector<double> x;

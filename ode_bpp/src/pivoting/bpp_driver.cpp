@@ -386,9 +386,12 @@ private:
         return prepared_;
     }
 
+    /// The next rung of the ladder; false once past kLastShift or when the ladder cannot rise
+    /// (a max diag so small, e.g. subnormal, that kFirstShift * max diag rounds to 0: without
+    /// this check a breakdown there retried at shift 0 forever, found by fuzz_solve).
     bool raise_shift() {
         const double next = shift_ == 0 ? kFirstShift * max_diag_ : shift_ * kShiftGrowth;
-        if (next > kLastShift * max_diag_ * (1 + 1e-9)) return false;
+        if (!(next > shift_) || next > kLastShift * max_diag_ * (1 + 1e-9)) return false;
         shift_ = next;
         return true;
     }

@@ -65,7 +65,8 @@ Residuals compute_residuals(const Problem& p, ConstStrided x, const std::vector<
 
 Residuals compute_residuals(const Problem& p, const pivoting::SymmetricRows& A, ConstStrided x,
                             const std::vector<RowState>* states) {
-    std::vector<double> w, scale;
+    thread_local std::vector<double> w_scratch, scale_scratch;  // capacity kept between solves
+    std::vector<double>&w = w_scratch, &scale = scale_scratch;
     residual_vectors(p, A, x, w, scale);
     Residuals r;
     for (int i = 0; i < p.n; ++i) {

@@ -201,7 +201,10 @@ Result solve(const Problem& problem, const Options& options, Strided x) {
         r.friction = options.friction;
         return r;
     }
-    const pivoting::SymmetricRows A(problem, {});  // the one O(n^2) pass after validation
+    // the one O(n^2) pass after validation, into storage kept per thread (small islands)
+    thread_local pivoting::SymmetricRows rows;
+    pivoting::SymmetricRows& A = rows;
+    A.assign(problem, {});
     std::vector<double> answer;
     Result r = dispatch(problem, A, options, answer);
     r.method = options.method;

@@ -56,6 +56,36 @@ constexpr int kMurtyPatience = 2;
 /// 97.8 % of the frames consistent against 96.8 % with 100.
 constexpr int kLinkedBudgetFactor = 3;
 
+bool is_identity(const std::vector<int>& perm) {
+    for (std::size_t i = 0; i < perm.size(); ++i)
+        if (perm[i] != static_cast<int>(i)) return false;
+    return true;
+}
+
+/// The driver's per-solve vectors, kept per thread so that their capacity outlives one solve
+/// (allocation dominated small islands; see pivot_loop.cpp). One solve at a time per thread:
+/// nothing a solve calls starts another.
+struct DriverWorkspace {
+    BoxedLcp lcp;
+    std::vector<int> perm;
+    SymmetricRows permuted_A;
+    std::vector<int> friction_rows, normal_of;
+    std::vector<double> mu;
+};
+
+DriverWorkspace& thread_workspace() {
+    thread_local DriverWorkspace workspace;
+    DriverWorkspace& w = workspace;
+    w.lcp.A = nullptr;
+    w.lcp.shift = 0;
+    w.lcp.friction_normal.clear();
+    w.lcp.friction_mu.clear();
+    w.friction_rows.clear();
+    w.normal_of.clear();
+    w.mu.clear();
+    return w;
+}
+
 class BppDriver {
 public:
     BppDriver(const Problem& p, const SymmetricRows& A, const Options& o) : p_(p), A_original_(A), o_(o) {
@@ -72,8 +102,11 @@ public:
         static const std::vector<RowState> kNoHint;
         perm_ = given ? o_.ordering
                       : choose_ordering(strategy, p_, A_original_, o_.order_tight_last ? o_.warm_start : kNoHint);
-        Ap_ = A_original_.permuted(perm_);
-        solver_ = make_free_solver(strategy, Ap_);
+        if (!is_identity(perm_)) {
+            A_original_.permute_into(perm_, permuted_A_);
+            Ap_ = &permuted_A_;
+        }
+        solver_ = make_free_solver(strategy, *Ap_);
         Result r;
         if (!solver_) {
             x_out.assign(static_cast<std::size_t>(p_.n), 0.0);
@@ -81,7 +114,7 @@ public:
             r.message = std::string("method ") + to_string(o_.method) + " is not a BPP method or is not available";
             return r;
         }
-        max_diag_ = Ap_.max_diag();
+        max_diag_ = Ap_->max_diag();
         build_permuted_problem();
         std::vector<RowState> states = permuted_warm_start();
         std::vector<double> x;
@@ -99,7 +132,7 @@ private:
     void build_permuted_problem() {
         const int n = p_.n;
         const std::vector<int> to_new = inverse_permutation(perm_);
-        lcp_.A = &Ap_;
+        lcp_.A = Ap_;
         lcp_.b.resize(n);
         lcp_.lo.resize(n);
         lcp_.hi.resize(n);
@@ -249,9 +282,9 @@ private:
     bool friction_consistent(const std::vector<double>& target, const std::vector<RowState>& states,
                              const std::vector<double>& x) const {
         std::vector<double> scale;
-        Ap_.abs_multiply(x, lcp_.shift, scale);
+        Ap_->abs_multiply(x, lcp_.shift, scale);
         const auto x_tolerance = [&](int i) {
-            return o_.tolerance * (scale[i] + std::abs(lcp_.b[i])) / (Ap_.diag(i) + lcp_.shift);
+            return o_.tolerance * (scale[i] + std::abs(lcp_.b[i])) / (Ap_->diag(i) + lcp_.shift);
         };
         for (std::size_t k = 0; k < target.size(); ++k) {
             const int i = friction_rows_[k];
@@ -464,12 +497,14 @@ private:
     const Options& o_;
     PivotSettings settings_;
     PivotCounters counters_;
-    std::vector<int> perm_;
-    SymmetricRows Ap_;
+    DriverWorkspace& ws_ = thread_workspace();
+    std::vector<int>& perm_ = ws_.perm;
+    SymmetricRows& permuted_A_ = ws_.permuted_A;  // A in the solver's order, unless that is the caller's
+    const SymmetricRows* Ap_ = &A_original_;     // the matrix the solve works on (permuted space)
     std::unique_ptr<FreeSolver> solver_;
-    BoxedLcp lcp_;
-    std::vector<int> friction_rows_, normal_of_;  // permuted indices
-    std::vector<double> mu_;
+    BoxedLcp& lcp_ = ws_.lcp;
+    std::vector<int>&friction_rows_ = ws_.friction_rows, &normal_of_ = ws_.normal_of;  // permuted indices
+    std::vector<double>& mu_ = ws_.mu;
     double max_diag_ = 0;
     double shift_ = 0;  // regularization adopted after a breakdown (0: none)
     bool prepared_ = false;

@@ -18,12 +18,40 @@ struct Infeasibility {
     std::vector<RowState> flip_to;    ///< the state Eq. 4 moves each of them to
     double violation = 0;
     int count() const { return static_cast<int>(rows.size()); }
+    void clear() {
+        rows.clear();
+        flip_to.clear();
+        violation = 0;
+    }
 };
+
+/// The loop's vectors, kept per thread so that their capacity outlives one run: on small islands
+/// allocating them afresh at every run cost a third of the solve (callgrind, ODE's demo_motors).
+/// A run uses them from start to end and calls nothing that runs another loop on this thread.
+struct Workspace {
+    std::vector<char> tight;
+    std::vector<double> Ax, w, scale, x_free, rhs_x;
+    Infeasibility inf, best_inf;
+    std::vector<RowState> best_states;
+    std::vector<double> best_x, best_w;
+    std::vector<double> lo, hi;  ///< the bounds in force (moving friction bounds change)
+    std::vector<double> best_lo, best_hi;
+    std::vector<int> linked;  ///< linked friction rows of the current step
+};
+
+Workspace& thread_workspace() {
+    thread_local Workspace workspace;
+    return workspace;
+}
 
 class PivotLoop {
 public:
     PivotLoop(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings, PivotCounters& counters)
-        : lcp_(lcp), solver_(solver), settings_(settings), counters_(counters), n_(lcp.n()) {}
+        : lcp_(lcp), solver_(solver), settings_(settings), counters_(counters), n_(lcp.n()) {
+        lo_ = lcp.lo;
+        hi_ = lcp.hi;
+        rhs_x_.assign(static_cast<std::size_t>(n_), 0.0);
+    }
 
     LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
         normalize(states);
@@ -34,7 +62,7 @@ public:
         best_count_ = n_ + 1;
         for (int step = 0; step < settings_.max_pivots; ++step) {
             if (!solve_step(states, x)) return LoopOutcome::Breakdown;
-            const Infeasibility inf = classify(states, x);
+            const Infeasibility& inf = classify(states, x);
             remember_if_best(inf, states, x);
             if (inf.count() == 0) {
                 orient_pinned_rows(states);
@@ -195,8 +223,9 @@ private:
 
     /// Eq. 4 with per-row tolerances: a w-tolerance tol * (|A||x| + |b|)_i and the matching
     /// x-tolerance divided by the diagonal (A_ii x_i is bounded by the same sum).
-    Infeasibility classify(const std::vector<RowState>& states, const std::vector<double>& x) const {
-        Infeasibility inf;
+    const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
+        Infeasibility& inf = ws_.inf;
+        inf.clear();
         for (int i = 0; i < n_; ++i) {
             if (pinned(i)) continue;
             const double diag = lcp_.A->diag(i) + lcp_.shift;
@@ -283,17 +312,17 @@ private:
     const PivotSettings& settings_;
     PivotCounters& counters_;
     const int n_;
-    std::vector<char> tight_;
-    std::vector<double> Ax_, w_, scale_, x_free_;
-    std::vector<double> rhs_x_ = std::vector<double>(static_cast<std::size_t>(n_), 0.0);
+    Workspace& ws_ = thread_workspace();
+    std::vector<char>& tight_ = ws_.tight;
+    std::vector<double>&Ax_ = ws_.Ax, &w_ = ws_.w, &scale_ = ws_.scale, &x_free_ = ws_.x_free, &rhs_x_ = ws_.rhs_x;
     int best_count_ = 0;
     double best_violation_ = std::numeric_limits<double>::infinity();
-    std::vector<RowState> best_states_;
-    Infeasibility best_inf_;
-    std::vector<double> best_x_, best_w_;
-    std::vector<double> lo_ = lcp_.lo, hi_ = lcp_.hi;  ///< the bounds in force (moving friction bounds change)
-    std::vector<double> best_lo_, best_hi_;
-    std::vector<int> linked_;  ///< linked friction rows of the current step
+    std::vector<RowState>& best_states_ = ws_.best_states;
+    Infeasibility& best_inf_ = ws_.best_inf;
+    std::vector<double>&best_x_ = ws_.best_x, &best_w_ = ws_.best_w;
+    std::vector<double>&lo_ = ws_.lo, &hi_ = ws_.hi;  ///< the bounds in force (moving friction bounds change)
+    std::vector<double>&best_lo_ = ws_.best_lo, &best_hi_ = ws_.best_hi;
+    std::vector<int>& linked_ = ws_.linked;  ///< linked friction rows of the current step
 };
 
 }  // namespace

@@ -13,6 +13,11 @@ struct Entry {
     double value;
 };
 
+struct Scratch {
+    std::vector<int> to_new, count, next;
+    std::vector<Entry> lower;
+};
+
 }  // namespace
 
 std::vector<int> inverse_permutation(const std::vector<int>& perm) {
@@ -21,13 +26,22 @@ std::vector<int> inverse_permutation(const std::vector<int>& perm) {
     return inverse;
 }
 
-SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) : n_(p.n) {
-    std::vector<int> to_new(static_cast<std::size_t>(n_));
+SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) { assign(p, perm); }
+
+void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
+    n_ = p.n;
+    // scratch that keeps its capacity from one island to the next (allocation dominated small
+    // islands); one TLS lookup, not one per entry
+    thread_local Scratch scratch;
+    std::vector<int>&to_new = scratch.to_new, &count = scratch.count, &next = scratch.next;
+    std::vector<Entry>& lower = scratch.lower;  // one pass over the dense triangle; A is mostly zeros
+    to_new.resize(static_cast<std::size_t>(n_));
     if (perm.empty()) std::iota(to_new.begin(), to_new.end(), 0);
-    else to_new = inverse_permutation(perm);
+    else
+        for (int i = 0; i < n_; ++i) to_new[perm[i]] = i;
     diag_.assign(static_cast<std::size_t>(n_), 0.0);
-    std::vector<Entry> lower;  // one pass over the dense triangle; A is mostly zeros
-    std::vector<int> count(static_cast<std::size_t>(n_), 0);
+    lower.clear();
+    count.assign(static_cast<std::size_t>(n_), 0);
     for (int i = 0; i < n_; ++i) {
         const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
         diag_[to_new[i]] = row[i];
@@ -42,7 +56,7 @@ SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) : n
     for (int i = 0; i < n_; ++i) rowptr_[i + 1] = rowptr_[i] + count[i];
     col_.resize(static_cast<std::size_t>(rowptr_[n_]));
     val_.resize(col_.size());
-    std::vector<int> next(rowptr_.begin(), rowptr_.end() - 1);
+    next.assign(rowptr_.begin(), rowptr_.end() - 1);
     for (const Entry& e : lower) {
         col_[next[e.row]] = e.col;
         val_[next[e.row]++] = e.value;
@@ -52,8 +66,13 @@ SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) : n
 }
 
 SymmetricRows SymmetricRows::permuted(const std::vector<int>& perm) const {
-    const std::vector<int> to_new = inverse_permutation(perm);
     SymmetricRows out;
+    permute_into(perm, out);
+    return out;
+}
+
+void SymmetricRows::permute_into(const std::vector<int>& perm, SymmetricRows& out) const {
+    const std::vector<int> to_new = inverse_permutation(perm);
     out.n_ = n_;
     out.diag_.resize(diag_.size());
     out.rowptr_.assign(rowptr_.size(), 0);
@@ -70,7 +89,6 @@ SymmetricRows SymmetricRows::permuted(const std::vector<int>& perm) const {
             out.val_[dst] = val_[k];
         }
     }
-    return out;
 }
 
 double SymmetricRows::max_diag() const {

@@ -18,8 +18,12 @@ public:
     /// Ap(i,j) = A(perm[i], perm[j]) read from the lower triangle of problem.A (original space).
     /// perm: perm[new] = old, n entries, or empty for the identity. Exact zeros are not stored.
     SymmetricRows(const Problem& problem, const std::vector<int>& perm);
+    /// The same as constructing from (problem, perm), reusing this object's storage.
+    void assign(const Problem& problem, const std::vector<int>& perm);
     /// The same matrix under a further permutation: result(i,j) = this(perm[i], perm[j]).
     SymmetricRows permuted(const std::vector<int>& perm) const;
+    /// The same, written into out (its storage reused); out must not be *this.
+    void permute_into(const std::vector<int>& perm, SymmetricRows& out) const;
 
     int n() const { return n_; }
     double diag(int i) const { return diag_[i]; }

@@ -129,6 +129,13 @@ void fill_residuals(const Problem& p, const pivoting::SymmetricRows& A, Result& 
     r.friction_error = res.friction;
 }
 
+// noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
+// library) at every use inside a loop instead of keeping it (7,000 calls per forklift solve)
+[[gnu::noinline]] pivoting::SymmetricRows& thread_rows() {
+    thread_local pivoting::SymmetricRows rows;
+    return rows;
+}
+
 Result invalid_input(const Problem& p, Strided x, std::string message) {
     Result r;
     r.status = Status::InvalidInput;
@@ -202,8 +209,7 @@ Result solve(const Problem& problem, const Options& options, Strided x) {
         return r;
     }
     // the one O(n^2) pass after validation, into storage kept per thread (small islands)
-    thread_local pivoting::SymmetricRows rows;
-    pivoting::SymmetricRows& A = rows;
+    pivoting::SymmetricRows& A = thread_rows();
     A.assign(problem, {});
     std::vector<double> answer;
     Result r = dispatch(problem, A, options, answer);

@@ -73,7 +73,7 @@ struct DriverWorkspace {
     std::vector<double> mu;
 };
 
-DriverWorkspace& thread_workspace() {
+[[gnu::noinline]] DriverWorkspace& thread_workspace() {
     thread_local DriverWorkspace workspace;
     DriverWorkspace& w = workspace;
     w.lcp.A = nullptr;

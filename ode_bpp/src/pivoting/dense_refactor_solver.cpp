@@ -17,7 +17,7 @@ struct DenseWorkspace {
     std::vector<int> free, position;
 };
 
-DenseWorkspace& sized_workspace(int n) {
+[[gnu::noinline]] DenseWorkspace& sized_workspace(int n) {
     thread_local DenseWorkspace workspace;
     DenseWorkspace& w = workspace;
     w.store.resize(static_cast<std::size_t>(n) * n);

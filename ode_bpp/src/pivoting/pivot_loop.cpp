@@ -39,7 +39,7 @@ struct Workspace {
     std::vector<int> linked;  ///< linked friction rows of the current step
 };
 
-Workspace& thread_workspace() {
+[[gnu::noinline]] Workspace& thread_workspace() {
     thread_local Workspace workspace;
     return workspace;
 }

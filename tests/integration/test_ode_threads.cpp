@@ -1,0 +1,159 @@
+// ode-bpp inside ODE's multi-threaded island stepping: islands are solved concurrently by a
+// thread pool, each worker with its own per-thread workspaces (pivot loop, driver, factor
+// buffers) and all of them sharing one world's warm-start memory behind the hook's lock.
+// The threaded run must give the single-threaded run's motion.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "ode_bpp/ode.h"
+
+namespace {
+
+struct OdeLifetime {
+    OdeLifetime() { dInitODE2(0); }
+    ~OdeLifetime() { dCloseODE(); }
+};
+
+/// Separate islands: piles of frictional boxes (skyline path, > 32 rows) and hinge chains
+/// (dense path), far enough apart never to touch.
+class IslandField {
+public:
+    IslandField() {
+        world = dWorldCreate();
+        space = dHashSpaceCreate(nullptr);
+        contacts = dJointGroupCreate(0);
+        dWorldSetGravity(world, 0, 0, -9.81);
+        dCreatePlane(space, 0, 0, 1, 0);
+        for (int k = 0; k < 4; ++k) {
+            for (int level = 0; level < 3; ++level)
+                add_box(6.0 * k, 0, 0.25 + 0.5 * level, level == 2 ? 50.0 : 1.0);  // heavy on top
+            add_chain(6.0 * k, 8, 6);
+        }
+    }
+    ~IslandField() {
+        dJointGroupDestroy(contacts);
+        dSpaceDestroy(space);
+        dWorldDestroy(world);
+    }
+    void step() {
+        dSpaceCollide(space, this, &IslandField::near);
+        dWorldStep(world, 1.0 / 60.0);
+        dJointGroupEmpty(contacts);
+    }
+    std::vector<double> positions() const {
+        std::vector<double> p;
+        for (dBodyID b : bodies) {
+            const dReal* x = dBodyGetPosition(b);
+            p.insert(p.end(), x, x + 3);
+        }
+        return p;
+    }
+
+    dWorldID world;
+    dSpaceID space;
+    dJointGroupID contacts;
+    std::vector<dBodyID> bodies;
+
+private:
+    dBodyID add_box(double x, double y, double z, double mass) {
+        dBodyID b = dBodyCreate(world);
+        dMass m;
+        dMassSetBoxTotal(&m, mass, 0.5, 0.5, 0.5);
+        dBodySetMass(b, &m);
+        dBodySetPosition(b, x, y, z);
+        dGeomSetBody(dCreateBox(space, 0.5, 0.5, 0.5), b);
+        bodies.push_back(b);
+        return b;
+    }
+    void add_chain(double x, double y, int links) {
+        dBodyID previous = nullptr;
+        for (int i = 0; i < links; ++i) {
+            dBodyID b = dBodyCreate(world);
+            dMass m;
+            dMassSetBoxTotal(&m, 1.0, 0.2, 0.2, 0.2);
+            dBodySetMass(b, &m);
+            dBodySetPosition(b, x + 0.4 * (i + 1), y, 5.0);
+            dJointID j = dJointCreateHinge(world, nullptr);
+            dJointAttach(j, b, previous);
+            dJointSetHingeAnchor(j, x + 0.4 * i, y, 5.0);
+            dJointSetHingeAxis(j, 0, 1, 0);
+            bodies.push_back(b);
+            previous = b;
+        }
+    }
+    static void near(void* data, dGeomID g1, dGeomID g2) {
+        auto* self = static_cast<IslandField*>(data);
+        dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
+        dContact c[4];
+        const int n = dCollide(g1, g2, 4, &c[0].geom, sizeof(dContact));
+        for (int i = 0; i < n; ++i) {
+            c[i].surface.mode = dContactApprox1;
+            c[i].surface.mu = 0.8;
+            dJointAttach(dJointCreateContact(self->world, self->contacts, &c[i]), b1, b2);
+        }
+    }
+};
+
+/// ODE's built-in thread pool serving one world's island stepping.
+class ThreadedStepping {
+public:
+    ThreadedStepping(dWorldID world, int threads) : world_(world) {
+        impl_ = dThreadingAllocateMultiThreadedImplementation();
+        pool_ = dThreadingAllocateThreadPool(threads, 0, dAllocateFlagBasicData, nullptr);
+        dThreadingThreadPoolServeMultiThreadedImplementation(pool_, impl_);
+        dWorldSetStepIslandsProcessingMaxThreadCount(world, threads);
+        dWorldSetStepThreadingImplementation(world, dThreadingImplementationGetFunctions(impl_), impl_);
+    }
+    ~ThreadedStepping() {
+        dThreadingImplementationShutdownProcessing(impl_);
+        dThreadingFreeThreadPool(pool_);
+        dWorldSetStepThreadingImplementation(world_, nullptr, nullptr);
+        dThreadingFreeImplementation(impl_);
+    }
+
+private:
+    dWorldID world_;
+    dThreadingImplementationID impl_;
+    dThreadingThreadPoolID pool_;
+};
+
+std::vector<double> run(const char* solver, int threads, int steps, ode_bpp::HookCounters* counters) {
+    IslandField field;
+    EXPECT_EQ(dWorldSetMLCPSolver(field.world, solver), 1) << solver;
+    const ode_bpp::HookCounters before = ode_bpp::hook_counters();
+    {
+        std::unique_ptr<ThreadedStepping> pool;
+        if (threads > 1) pool = std::make_unique<ThreadedStepping>(field.world, threads);
+        for (int s = 0; s < steps; ++s) field.step();
+    }
+    const ode_bpp::HookCounters after = ode_bpp::hook_counters();
+    counters->islands = after.islands - before.islands;
+    counters->failures = after.failures - before.failures;
+    ode_bpp::forget_world(field.world);
+    return field.positions();
+}
+
+TEST(OdeThreads, ThreadPoolIslandsGiveTheSingleThreadedMotion) {
+    OdeLifetime ode;
+    constexpr int kSteps = 180;
+    for (const char* solver : {"bpp", "bpp-sky", "bpp-chol"}) {
+        ode_bpp::HookCounters one{}, two{};
+        const std::vector<double> serial = run(solver, 1, kSteps, &one);
+        const std::vector<double> threaded = run(solver, 2, kSteps, &two);
+        ASSERT_EQ(serial.size(), threaded.size());
+        EXPECT_GE(two.islands, 8 * kSteps) << solver;  // every island of every step went through the hook
+        EXPECT_EQ(two.failures, 0) << solver;
+        EXPECT_EQ(one.islands, two.islands) << solver;
+        // the warm-start memory may age differently when islands finish in another order,
+        // so a pivot path may differ: answers then agree to the solver's tolerance, not bitwise
+        for (std::size_t i = 0; i < serial.size(); ++i) {
+            ASSERT_TRUE(std::isfinite(threaded[i])) << solver << " coordinate " << i;
+            EXPECT_NEAR(serial[i], threaded[i], 1e-6) << solver << " coordinate " << i;
+        }
+    }
+}
+
+}  // namespace

@@ -176,7 +176,7 @@ OwnedProblem capstan_mlcp(int links, double wrap, double mu, double load_ratio, 
         v.segment<2>(3 * k) = 0.5 * tangent;  // sliding towards the load
         f[3 * k + 1] = -m * g;
     }
-    const auto centre = [&](int k) { return Eigen::Vector2d(std::cos(angle[k]), std::sin(angle[k])) * (radius + thickness); };
+    const auto centre = [&](int k) -> Eigen::Vector2d { return Eigen::Vector2d(std::cos(angle[k]), std::sin(angle[k])) * (radius + thickness); };
     for (int k = 1; k < links; ++k) {  // planar ball joint between links k-1 and k
         const double a = angle[k] + step_angle / 2;
         const Eigen::Vector2d anchor = Eigen::Vector2d(std::cos(a), std::sin(a)) * (radius + thickness);

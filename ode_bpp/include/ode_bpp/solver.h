@@ -126,6 +126,12 @@ struct Options {
     /// (pivoting/friction_link.h); the outer damped bound updates below only where that fails.
     /// False: outer damped updates only (ode-bpp 0.1's Consistent mode).
     bool link_friction = true;
+    /// Consistent friction: where the linked solve does not finish within its budget, Lemke's
+    /// method on the friction LCP (pivoting/friction_lcp.h: the friction rows split into
+    /// non-negative parts with a multiplier for mu x_n - |x_f|), whose answer a linked solve then
+    /// certifies. On the winch at compliance 1e-10 it took the frames consistent from 97.8 % to
+    /// 100 %. False: skip it (outer damped rounds as the last resort).
+    bool lemke_friction = true;
     /// Regularization continuation for nearly singular A: solve with A + delta*I, delta falling
     /// geometrically to 0, each stage warm-started from the last. 0 disables it.
     int continuation_stages = 0;
@@ -168,6 +174,9 @@ struct Result {
     /// Consistent mode: the linked solve (Options::link_friction) ran; friction_rounds counts
     /// the outer rounds after it (0 when it alone converged).
     bool linked_friction = false;
+    /// Consistent mode: complementary pivots of the Lemke stage, which runs only where the linked
+    /// solves did not finish (pivoting/friction_lcp.h); 0 when it was not needed.
+    int lemke_pivots = 0;
     std::vector<int> tight_per_step;  ///< |T| at each pivot step
     int tight = 0;                ///< |T| at the answer
     std::string fallback;         ///< fallback taken, empty if none ("regularized", "dantzig", ...)

@@ -1,0 +1,193 @@
+#include "pivoting/lemke.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ode_bpp::pivoting {
+
+namespace {
+
+/// A column entry blocks the ratio test only above this fraction of the column's largest entry:
+/// smaller ones are rounding of structural zeros of B^-1 [I -M -d].
+constexpr double kPivotTolerance = 1e-11;
+/// Ratios and lexicographic keys within this relative distance of the least are ties.
+constexpr double kTieTolerance = 1e-12;
+/// B^-1 is updated in product form (rank one per pivot); it is rebuilt from the basis columns
+/// every max(kMinRefreshPeriod, N) pivots, which costs as much as N pivots (O(N^3)).
+constexpr int kMinRefreshPeriod = 64;
+
+/// The tableau I u - M z - d z0 = q, d = 1, kept as B^-1 and B^-1 q. Variables: u_i = i,
+/// z_i = N + i, z0 = 2N.
+class LemkeTableau {
+public:
+    LemkeTableau(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Eigen::VectorXd& d)
+        : M_(M), q_(q), d_(d), n_(static_cast<int>(q.size())), Binv_(Eigen::MatrixXd::Identity(n_, n_)), rhs_(q), basis_(n_) {
+        for (int i = 0; i < n_; ++i) basis_[i] = i;
+    }
+
+    int artificial() const { return 2 * n_; }
+    int complement(int var) const { return var < n_ ? var + n_ : var - n_; }
+    int basic(int row) const { return basis_[row]; }
+
+    /// c = B^-1 a_var, a_var the variable's column of [I, -M, -d].
+    void column(int var, Eigen::VectorXd& c) const {
+        if (var < n_)
+            c = Binv_.col(var);
+        else if (var < 2 * n_)
+            c.noalias() = -(Binv_ * M_.col(var - n_));
+        else
+            c.noalias() = -(Binv_ * d_);
+    }
+
+    /// The leaving row for an entering column c by the lexicographic minimum ratio rule, or -1
+    /// when no entry blocks (a ray). The artificial variable leaves whenever it ties.
+    int ratio_test(const Eigen::VectorXd& c) const {
+        const double c_max = c.cwiseAbs().maxCoeff();
+        if (!(c_max > 0)) return -1;
+        std::vector<int> ties;
+        double least = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < n_; ++i)
+            if (c[i] > kPivotTolerance * c_max) least = std::min(least, ratio(i, c));
+        if (!std::isfinite(least)) return -1;
+        const double rhs_scale = kTieTolerance * rhs_.cwiseAbs().maxCoeff();
+        for (int i = 0; i < n_; ++i)
+            if (c[i] > kPivotTolerance * c_max && ratio(i, c) <= least * (1 + kTieTolerance) + rhs_scale / c[i])
+                ties.push_back(i);
+        for (int i : ties)
+            if (basis_[i] == artificial()) return i;
+        for (int k = 0; k < n_ && ties.size() > 1; ++k) narrow_lexicographically(k, c, ties);
+        return ties.front();
+    }
+
+    /// Exchanges the basic variable of row r for `entering`, whose column is c.
+    void pivot(int r, int entering, const Eigen::VectorXd& c) {
+        const double p = c[r];
+        const Eigen::RowVectorXd pivot_row = Binv_.row(r) / p;
+        const double pivot_rhs = rhs_[r] / p;
+        Eigen::VectorXd eliminate = c;
+        eliminate[r] = 0;
+        // B^-1 <- E B^-1 with the eta matrix E of column c at row r
+        Binv_.noalias() -= eliminate * pivot_row;
+        rhs_ -= eliminate * pivot_rhs;
+        Binv_.row(r) = pivot_row;
+        rhs_[r] = pivot_rhs;
+        basis_[r] = entering;
+    }
+
+    /// B^-1 and B^-1 q afresh from the basis columns (product-form updates drift).
+    void refresh() {
+        const Eigen::PartialPivLU<Eigen::MatrixXd> lu(basis_matrix());
+        Binv_ = lu.inverse();
+        rhs_ = lu.solve(q_);
+    }
+
+    /// The basic solution: z_i and u_i from B x_B = q, nonbasic entries 0, negatives (rounding of a
+    /// degenerate basis) clamped to 0.
+    void extract(LemkeSolution& s) const {
+        const Eigen::VectorXd xb = basis_matrix().partialPivLu().solve(q_);
+        s.z = Eigen::VectorXd::Zero(n_);
+        s.z_basic.assign(static_cast<std::size_t>(n_), 0);
+        s.u_basic.assign(static_cast<std::size_t>(n_), 0);
+        for (int r = 0; r < n_; ++r) {
+            const int var = basis_[r];
+            if (var < n_) {
+                s.u_basic[var] = 1;
+            } else if (var < 2 * n_) {
+                s.z_basic[var - n_] = 1;
+                s.z[var - n_] = std::max(0.0, xb[r]);
+            }
+        }
+    }
+
+private:
+    double ratio(int i, const Eigen::VectorXd& c) const { return std::max(rhs_[i], 0.0) / c[i]; }
+
+    /// Keeps the rows of `ties` whose key B^-1(i, k) / c_i is least (lexicographic rule, column k).
+    void narrow_lexicographically(int k, const Eigen::VectorXd& c, std::vector<int>& ties) const {
+        double least = std::numeric_limits<double>::infinity(), largest = 0;
+        for (int i : ties) {
+            least = std::min(least, Binv_(i, k) / c[i]);
+            largest = std::max(largest, std::abs(Binv_(i, k) / c[i]));
+        }
+        const double slack = kTieTolerance * largest;
+        ties.erase(std::remove_if(ties.begin(), ties.end(), [&](int i) { return Binv_(i, k) / c[i] > least + slack; }),
+                   ties.end());
+    }
+
+    Eigen::MatrixXd basis_matrix() const {
+        Eigen::MatrixXd B(n_, n_);
+        for (int r = 0; r < n_; ++r) {
+            const int var = basis_[r];
+            if (var < n_)
+                B.col(r) = Eigen::VectorXd::Unit(n_, var);
+            else if (var < 2 * n_)
+                B.col(r) = -M_.col(var - n_);
+            else
+                B.col(r) = -d_;
+        }
+        return B;
+    }
+
+    const Eigen::MatrixXd& M_;
+    const Eigen::VectorXd& q_;
+    const Eigen::VectorXd& d_;
+    int n_;
+    Eigen::MatrixXd Binv_;
+    Eigen::VectorXd rhs_;
+    std::vector<int> basis_;
+};
+
+}  // namespace
+
+Eigen::VectorXd spread_covering_vector(int n, int attempt) {
+    constexpr double kGoldenFraction = 0.6180339887498949;
+    Eigen::VectorXd d(n);
+    for (int i = 0; i < n; ++i) {
+        const double t = (i + 1 + static_cast<double>(attempt) * n) * kGoldenFraction;
+        d[i] = 0.5 + (t - std::floor(t));
+    }
+    return d;
+}
+
+LemkeSolution solve_lemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Eigen::VectorXd& d, int max_pivots) {
+    const int n = static_cast<int>(q.size());
+    LemkeSolution s;
+    LemkeTableau t(M, q, d);
+    if (n == 0 || q.minCoeff() >= 0) {  // z = 0 solves it
+        t.extract(s);
+        s.outcome = LemkeOutcome::Solved;
+        return s;
+    }
+    // z0 enters at the row of the least q_i / d_i: then B^-1 q >= 0
+    Eigen::Index first = 0;
+    q.cwiseQuotient(d).minCoeff(&first);
+    Eigen::VectorXd c;
+    t.column(t.artificial(), c);
+    int entering = t.complement(t.basic(static_cast<int>(first)));
+    t.pivot(static_cast<int>(first), t.artificial(), c);
+    s.pivots = 1;
+    const int refresh_period = std::max(kMinRefreshPeriod, n);
+    while (s.pivots < max_pivots) {
+        t.column(entering, c);
+        const int r = t.ratio_test(c);
+        if (r < 0) {
+            s.outcome = LemkeOutcome::RayTermination;
+            return s;
+        }
+        const int leaving = t.basic(r);
+        t.pivot(r, entering, c);
+        ++s.pivots;
+        if (leaving == t.artificial()) {
+            t.extract(s);
+            s.outcome = LemkeOutcome::Solved;
+            return s;
+        }
+        if (s.pivots % refresh_period == 0) t.refresh();
+        entering = t.complement(leaving);
+    }
+    s.outcome = LemkeOutcome::MaxPivots;
+    return s;
+}
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,188 @@
+// Lemke's method (pivoting/lemke.h) and the friction LCP it solves for Consistent friction
+// (pivoting/friction_lcp.h): solutions checked by their own certificate (z >= 0, u = Mz + q >= 0,
+// z'u = 0), rays where no solution exists, and the friction LCP's answer checked as an answer of
+// the MLCP with bounds from its own normals (compute_residuals).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "ode_bpp/residuals.h"
+#include "pivoting/friction_lcp.h"
+#include "pivoting/lemke.h"
+#include "pivoting/symmetric_rows.h"
+#include "problems/generators.h"
+
+namespace ode_bpp::pivoting {
+namespace {
+
+/// max over i of the violations of z >= 0, u >= 0 and z_i u_i = 0, relative to the LCP's scale.
+double lcp_violation(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Eigen::VectorXd& z) {
+    const Eigen::VectorXd u = M * z + q;
+    const double scale = 1 + q.cwiseAbs().maxCoeff() + (M.cwiseAbs() * z.cwiseAbs()).maxCoeff();
+    double v = 0;
+    for (int i = 0; i < z.size(); ++i) v = std::max({v, -z[i], -u[i], std::abs(std::min(z[i], u[i]))});
+    return v / scale;
+}
+
+Eigen::MatrixXd random_matrix(int n, int m, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    Eigen::MatrixXd G(n, m);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) G(i, j) = static_cast<double>(rng() % 2001) / 1000.0 - 1.0;
+    return G;
+}
+
+/// Semidefinite M (copositive-plus): Lemke solves every feasible instance.
+TEST(Lemke, SolvesPositiveSemidefiniteLcps) {
+    int solved = 0;
+    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+        const int n = 5 + static_cast<int>(seed) * 4;
+        const Eigen::MatrixXd G = random_matrix(n, n / 2, seed);  // rank n/2
+        const Eigen::MatrixXd M = G * G.transpose();
+        // q = u* - M z* with z*, u* >= 0: z* is feasible, so a solution exists
+        const Eigen::VectorXd z_star = random_matrix(n, 1, seed + 100).col(0).cwiseAbs();
+        const Eigen::VectorXd u_star = random_matrix(n, 1, seed + 200).col(0).cwiseAbs();
+        const Eigen::VectorXd q = u_star - M * z_star;
+        const LemkeSolution s = solve_lemke(M, q, spread_covering_vector(n, 0), 20 * n);
+        ASSERT_EQ(s.outcome, LemkeOutcome::Solved) << "seed " << seed;
+        EXPECT_LT(lcp_violation(M, q, s.z), 1e-12) << "seed " << seed;
+        ++solved;
+    }
+    EXPECT_EQ(solved, 10);
+}
+
+TEST(Lemke, SolvesPositiveDefiniteLcpsWithEveryCoveringVector) {
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        const int n = 40;
+        const Eigen::MatrixXd G = random_matrix(n, n, seed);
+        const Eigen::MatrixXd M = G * G.transpose() + 1e-3 * Eigen::MatrixXd::Identity(n, n);
+        const Eigen::VectorXd q = random_matrix(n, 1, seed + 50).col(0);
+        for (int attempt = -1; attempt < 3; ++attempt) {
+            const Eigen::VectorXd d = attempt < 0 ? Eigen::VectorXd::Ones(n) : spread_covering_vector(n, attempt);
+            const LemkeSolution s = solve_lemke(M, q, d, 20 * n);
+            ASSERT_EQ(s.outcome, LemkeOutcome::Solved) << "seed " << seed << " attempt " << attempt;
+            EXPECT_LT(lcp_violation(M, q, s.z), 1e-11) << "seed " << seed << " attempt " << attempt;
+            for (int i = 0; i < n; ++i)
+                if (!s.z_basic[i]) {
+                    EXPECT_EQ(s.z[i], 0.0);
+                }
+        }
+    }
+}
+
+/// Degenerate: duplicated rows and columns, and zeros in q, make ties in the ratio test that the
+/// lexicographic rule must break without cycling.
+TEST(Lemke, FinishesOnDegenerateProblems) {
+    const int base = 12;
+    const Eigen::MatrixXd G = random_matrix(base, base, 7);
+    Eigen::MatrixXd B = G * G.transpose() + Eigen::MatrixXd::Identity(base, base);
+    Eigen::MatrixXd M(2 * base, 2 * base);
+    M << B, B, B, B;  // every row twice
+    Eigen::VectorXd q(2 * base);
+    q << -Eigen::VectorXd::Ones(base), -Eigen::VectorXd::Ones(base);
+    q.segment(0, 3).setZero();
+    const LemkeSolution s = solve_lemke(M, q, Eigen::VectorXd::Ones(2 * base), 40 * base);
+    ASSERT_EQ(s.outcome, LemkeOutcome::Solved);
+    EXPECT_LT(lcp_violation(M, q, s.z), 1e-12);
+}
+
+TEST(Lemke, EndsOnARayWhenNoSolutionExists) {
+    // u = -z - 1 < 0 for every z >= 0
+    const Eigen::MatrixXd M = -Eigen::MatrixXd::Identity(1, 1);
+    const Eigen::VectorXd q = -Eigen::VectorXd::Ones(1);
+    EXPECT_EQ(solve_lemke(M, q, Eigen::VectorXd::Ones(1), 10).outcome, LemkeOutcome::RayTermination);
+}
+
+TEST(Lemke, ZeroIsTheAnswerWhenQIsNonNegative) {
+    const Eigen::MatrixXd M = Eigen::MatrixXd::Identity(3, 3);
+    const Eigen::VectorXd q = Eigen::VectorXd::Constant(3, 2.0);
+    const LemkeSolution s = solve_lemke(M, q, Eigen::VectorXd::Ones(3), 10);
+    ASSERT_EQ(s.outcome, LemkeOutcome::Solved);
+    EXPECT_EQ(s.pivots, 0);
+    EXPECT_EQ(s.z.norm(), 0.0);
+}
+
+TEST(Lemke, StopsAtItsBudget) {
+    const Eigen::MatrixXd G = random_matrix(30, 30, 3);
+    const Eigen::MatrixXd M = G * G.transpose() + Eigen::MatrixXd::Identity(30, 30);
+    const Eigen::VectorXd q = -Eigen::VectorXd::Ones(30);  // every row ends positive: >= 30 pivots
+    const LemkeSolution s = solve_lemke(M, q, Eigen::VectorXd::Ones(30), 5);
+    EXPECT_EQ(s.outcome, LemkeOutcome::MaxPivots);
+    EXPECT_EQ(s.pivots, 5);
+}
+
+TEST(Lemke, SpreadCoveringVectorsArePositiveAndDiffer) {
+    const Eigen::VectorXd a = spread_covering_vector(50, 0), b = spread_covering_vector(50, 1);
+    EXPECT_GE(a.minCoeff(), 0.5);
+    EXPECT_LT(a.maxCoeff(), 1.5);
+    EXPECT_GT((a - b).cwiseAbs().maxCoeff(), 0.1);
+    EXPECT_EQ(a, spread_covering_vector(50, 0));  // reproducible
+}
+
+/// The driver's BoxedLcp of a problem in its own order (no permutation, fixed bounds as given).
+struct DriverLcp {
+    SymmetricRows A;
+    BoxedLcp lcp;
+    std::vector<int> rows, normals;
+    std::vector<double> mu;
+    explicit DriverLcp(const Problem& p) : A(p, {}) {
+        lcp.A = &A;
+        for (int i = 0; i < p.n; ++i) {
+            const bool unbounded = i < p.nub || (p.lo[i] == -INFINITY && p.hi[i] == INFINITY);
+            lcp.b.push_back(p.b[i]);
+            lcp.lo.push_back(unbounded ? -INFINITY : p.lo[i]);
+            lcp.hi.push_back(unbounded ? INFINITY : p.hi[i]);
+            lcp.always_free.push_back(unbounded);
+            if (p.findex != nullptr && p.findex[i] >= 0) {
+                rows.push_back(i);
+                normals.push_back(p.findex[i]);
+                mu.push_back(p.hi[i]);
+                lcp.always_free.back() = 0;
+            }
+        }
+    }
+};
+
+TEST(FrictionLcp, LemkesAnswerSolvesTheMlcpWithBoundsFromItsOwnNormals) {
+    for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+        const auto p = problems::random_boxed_mlcp(40, 4, 8, 1e4, seed);
+        DriverLcp s(p);
+        std::string why;
+        const auto lcp = FrictionLcp::build(s.lcp, {s.rows, s.normals, s.mu}, why);
+        ASSERT_TRUE(lcp.has_value()) << why;
+        const int N = static_cast<int>(lcp->q().size());
+        const LemkeSolution sol = solve_lemke(lcp->M(), lcp->q(), spread_covering_vector(N, 0), 10 * N);
+        ASSERT_EQ(sol.outcome, LemkeOutcome::Solved) << "seed " << seed;
+        std::vector<double> x;
+        std::vector<RowState> states;
+        lcp->recover(sol, x, states);
+        const Residuals r = compute_residuals(p, ConstStrided{x.data(), 1});
+        double scale = 1;
+        for (double v : x) scale = std::max(scale, std::abs(v));
+        EXPECT_LT(r.scaled_natural, 1e-8) << "seed " << seed;
+        EXPECT_LT(r.friction, 1e-9 * scale) << "seed " << seed;
+        for (int i = 0; i < p.n; ++i) {  // the index set matches x
+            if (states[i] == RowState::AtLo && p.findex[i] < 0) {
+                EXPECT_EQ(x[i], p.lo[i]) << "row " << i;
+            }
+            if (i < p.nub) {
+                EXPECT_EQ(states[i], RowState::Free);
+            }
+        }
+    }
+}
+
+TEST(FrictionLcp, FrictionOnAnUnboundedNormalIsOutsideTheFormulation) {
+    auto p = problems::random_boxed_mlcp(20, 4, 3, 1e2, 3);
+    p.findex[5] = 0;  // row 0 is unbounded: |x_0| could be any sign
+    DriverLcp s(p);
+    std::string why;
+    EXPECT_FALSE(FrictionLcp::build(s.lcp, {s.rows, s.normals, s.mu}, why).has_value());
+    EXPECT_NE(why.find("normal"), std::string::npos) << why;
+}
+
+}  // namespace
+}  // namespace ode_bpp::pivoting

@@ -296,6 +296,10 @@ private:
         std::vector<RowState> lemke_states;
         std::vector<double> lemke_x;
         lcp->recover(s, lemke_x, lemke_states);
+        if (!std::all_of(lemke_x.begin(), lemke_x.end(), [](double v) { return std::isfinite(v); })) {
+            lemke_note_ = "Lemke's answer was not finite";
+            return false;
+        }
         if (!linked_solve_finishes(lemke_states, lemke_x, /*from_answer=*/true)) {
             if (!breakdown_) lemke_note_ = "Lemke's answer did not pass the linked solve";
             return false;

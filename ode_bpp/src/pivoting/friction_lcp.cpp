@@ -1,6 +1,7 @@
 #include "pivoting/friction_lcp.h"
 
 #include <cmath>
+#include <limits>
 
 namespace ode_bpp::pivoting {
 
@@ -32,6 +33,10 @@ std::optional<FrictionLcp> FrictionLcp::build(const BoxedLcp& lcp, const Frictio
     if (!f.classify(lcp, friction, why)) return std::nullopt;
     f.number_variables();
     if (!f.eliminate_unbounded(dense(*lcp.A, lcp.shift), lcp, why)) return std::nullopt;
+    if (!f.scale_.allFinite() || !f.M_.allFinite() || !f.q_.allFinite()) {
+        why = "the Schur complement of the bounded rows is not positive definite";
+        return std::nullopt;
+    }
     return f;
 }
 
@@ -177,7 +182,8 @@ void FrictionLcp::balance() {
     // the couplings +-1 and mu near one. Without it the ratio test met rays on a tenth of the
     // winch frames, its pivots lost among the entries of bodies 400 times lighter.
     scale_.resize(q_.size());
-    for (int k = 0; k < num_y_; ++k) scale_[k] = 1 / std::sqrt(M_(k, k));
+    for (int k = 0; k < num_y_; ++k)  // S is SPD, so M_kk > 0; otherwise NaN, which build() rejects
+        scale_[k] = M_(k, k) > 0 ? 1 / std::sqrt(M_(k, k)) : std::numeric_limits<double>::quiet_NaN();
     for (const Row& r : rows_)
         if (r.l >= 0) scale_[r.l] = 1 / scale_[r.y];
     M_ = scale_.asDiagonal() * M_ * scale_.asDiagonal();

@@ -34,6 +34,21 @@ double counted_refactor(const SkylineShape& s, int k0) {
     return count;
 }
 
+/// The same with the indices in `removed` skipped as columns and as the earlier columns j.
+double counted_refactor_removing(const SkylineShape& s, int k0, const std::vector<char>& removed) {
+    double count = 0;
+    for (int k = k0; k < s.n; ++k) {
+        if (removed[k]) continue;
+        for (int r = k; r < s.n; ++r) {
+            if (!stored(s, r, k)) continue;
+            count += 1;
+            for (int j = 0; j < k; ++j)
+                if (!removed[j] && stored(s, k, j) && stored(s, r, j)) count += 1;
+        }
+    }
+    return count;
+}
+
 /// Entries of the trailing columns k > i inside the storage (each one rotated against sigma).
 double counted_delete(const SkylineShape& s, int i) {
     double count = 0;
@@ -54,6 +69,29 @@ TEST(LinalgCostModel, MatchesEntryByEntryCounts) {
             double entries = 0;
             for (int c = k; c < n; ++c) entries += shape.height(c);
             EXPECT_EQ(model.copy_cost(k), entries);
+        }
+    }
+}
+
+TEST(LinalgCostModel, RefactorWithRemovedRowsMatchesEntryByEntryCounts) {
+    std::mt19937 rng(53);
+    for (int trial = 0; trial < 20; ++trial) {
+        const int n = 1 + static_cast<int>(rng() % 40);
+        const SkylineShape shape = trial % 5 == 0 ? SkylineShape::dense(n) : random_shape(n, rng);
+        const linalg::CostModel model(shape);
+        std::vector<char> removed(static_cast<std::size_t>(n), 0);
+        std::vector<int> removed_rows;
+        for (int i = 0; i < n; ++i)
+            if (rng() % 3 == 0) {
+                removed[i] = 1;
+                removed_rows.push_back(i);
+            }
+        for (int k = 0; k < n; ++k) {
+            EXPECT_EQ(model.refactor_cost(k, removed_rows), counted_refactor_removing(shape, k, removed)) << "k0 " << k;
+            EXPECT_EQ(model.refactor_cost(k, {}), model.refactor_cost(k)) << "k0 " << k;
+        }
+        if (!removed_rows.empty()) {
+            EXPECT_LT(model.refactor_cost(0, removed_rows), model.refactor_cost(0));
         }
     }
 }

@@ -18,7 +18,9 @@ double column_update_cost(const std::vector<double>& sky_prefix, int j_first, in
 CostModel::CostModel(const SkylineShape& shape)
     : delete_suffix_(static_cast<std::size_t>(shape.n) + 1, 0.0),
       refactor_suffix_(static_cast<std::size_t>(shape.n) + 1, 0.0),
-      colptr_(shape.colptr) {
+      colptr_(shape.colptr),
+      sky_(shape.sky),
+      first_column_(static_cast<std::size_t>(shape.n), 0) {
     const int n = shape.n;
     std::vector<double> sky_prefix(static_cast<std::size_t>(n) + 1, 0.0);
     for (int k = 0; k < n; ++k) sky_prefix[k + 1] = sky_prefix[k] + shape.sky[k];
@@ -26,6 +28,7 @@ CostModel::CostModel(const SkylineShape& shape)
     int j_first = 0;
     for (int k = 0; k < n; ++k) {
         while (shape.sky[j_first] < k) ++j_first;
+        first_column_[k] = j_first;
         column_cost[k] = column_update_cost(sky_prefix, j_first, k) + shape.height(k);
     }
     for (int k = n - 1; k >= 0; --k) {
@@ -40,6 +43,37 @@ double CostModel::delete_cost(int i) const {
 }
 
 double CostModel::refactor_cost(int k0) const { return refactor_suffix_[k0]; }
+
+double CostModel::refactor_cost(int k0, const std::vector<int>& removed) const {
+    const int n = static_cast<int>(sky_.size());
+    if (k0 >= n) return 0;
+    // removed[] cursors for the window's two ends, both moving forward
+    std::size_t at_front = 0, at_back = 0;
+    const auto removed_at = [&](std::size_t& cursor, int j) {
+        while (cursor < removed.size() && removed[cursor] < j) ++cursor;
+        return cursor < removed.size() && removed[cursor] == j;
+    };
+    // window: the kept columns j in [back, k) that reach row k, as their count and sum of sky[j]
+    int back = first_column_[k0];
+    double count = 0, sky_sum = 0, cost = 0;
+    for (int j = back; j < k0; ++j)
+        if (!removed_at(at_front, j)) {
+            count += 1;
+            sky_sum += sky_[j];
+        }
+    for (int k = k0; k < n; ++k) {
+        for (; back < first_column_[k]; ++back)
+            if (!removed_at(at_back, back)) {
+                count -= 1;
+                sky_sum -= sky_[back];
+            }
+        if (removed_at(at_front, k)) continue;
+        cost += sky_sum - count * (k - 1) + (sky_[k] - k + 1);  // sum_j (sky[j] - k + 1) + height(k)
+        count += 1;
+        sky_sum += sky_[k];
+    }
+    return cost;
+}
 
 double CostModel::copy_cost(int k0) const { return static_cast<double>(colptr_.back() - colptr_[k0]); }
 

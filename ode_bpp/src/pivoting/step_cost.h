@@ -21,9 +21,10 @@ inline double deletion_price(const linalg::CostModel& cost, const std::vector<in
     return price;
 }
 
-/// Copy L0 from column copy_from (and Ap's tail), then refactor from the first tight row.
+/// Copy L0 from column copy_from (and Ap's tail), then refactor from the first tight row,
+/// skipping the tight ones.
 inline double refactor_price(const linalg::CostModel& cost, const std::vector<int>& tight_rows, int copy_from) {
-    return kCopyUnit * cost.copy_cost(copy_from) + kRefactorUnit * cost.refactor_cost(tight_rows.front());
+    return kCopyUnit * cost.copy_cost(copy_from) + kRefactorUnit * cost.refactor_cost(tight_rows.front(), tight_rows);
 }
 
 }  // namespace ode_bpp::pivoting

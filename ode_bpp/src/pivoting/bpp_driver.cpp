@@ -55,7 +55,9 @@ constexpr int kMurtyPatience = 2;
 /// A linked solve (consistent friction) may take this many times Options::max_pivots. Before the
 /// Lemke stage, 3 (300 steps) finished 97.8 % of the winch frames at compliance 1e-10 against
 /// 96.8 % with 1; with Lemke behind it every frame finishes either way, and 1 halved the winch's
-/// total solve time (57 s -> 30 s for 1,200 frames, slowest frame 496 -> 145 ms).
+/// total solve time (57 s -> 30 s for 1,200 frames, slowest frame 496 -> 145 ms). Less is slower
+/// again (40 and 20 linked steps: +19 % and +52 %), as Lemke (~27 ms there) then runs on more
+/// frames.
 constexpr int kLinkedBudgetFactor = 1;
 
 /// Lemke's method (lemke.h) gets this many complementary pivots per LCP variable; it usually

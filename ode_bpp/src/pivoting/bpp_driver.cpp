@@ -65,6 +65,13 @@ constexpr int kLinkedBudgetFactor = 1;
 constexpr int kLemkePivotsPerVariable = 10;
 /// Lemke paths tried, each with another covering vector, when one ends on a ray (lemke.h).
 constexpr int kLemkeAttempts = 3;
+/// Largest friction LCP the Lemke stage takes on: dense, N^2 doubles and O(N^2) per pivot over
+/// ~N pivots. The winch's reach 604 variables (27 ms median); 1,000 keeps the worst case near a
+/// tenth of a second instead of seconds on islands of thousands of rows.
+constexpr int kLemkeMaxVariables = 1000;
+/// Largest island the Lemke stage takes on: it forms A densely and factors its unbounded block
+/// (n^2 doubles, O(n^3)); 1,500 rows is 18 MB and a fraction of a second.
+constexpr int kLemkeMaxRows = 1500;
 
 bool is_identity(const std::vector<int>& perm) {
     for (std::size_t i = 0; i < perm.size(); ++i)
@@ -277,6 +284,10 @@ private:
     bool lemke_finishes(std::vector<RowState>& states, std::vector<double>& x) {
         if (lemke_tried_ || !o_.lemke_friction) return false;
         lemke_tried_ = true;
+        if (p_.n > kLemkeMaxRows || lemke_variables_at_most() > kLemkeMaxVariables) {
+            lemke_note_ = "Lemke stage skipped: the island is too large for a dense LCP";
+            return false;
+        }
         std::string why;
         const std::optional<FrictionLcp> lcp = FrictionLcp::build(lcp_, {friction_rows_, normal_of_, mu_}, why);
         if (!lcp) {
@@ -309,6 +320,15 @@ private:
         states = lemke_states;
         x = lemke_x;
         return true;
+    }
+
+    /// An upper bound of the friction LCP's size (friction_lcp.h): 3 variables per friction row,
+    /// 2 per other row bounded on both sides, 1 per one-sided row.
+    int lemke_variables_at_most() const {
+        int count = static_cast<int>(friction_rows_.size());  // + 2 each below: their bounds are finite
+        for (int i = 0; i < p_.n; ++i)
+            if (!lcp_.always_free[i]) count += std::isfinite(lcp_.lo[i]) && std::isfinite(lcp_.hi[i]) ? 2 : 1;
+        return count;
     }
 
     std::vector<double> current_friction_bounds() const {

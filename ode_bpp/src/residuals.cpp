@@ -37,6 +37,19 @@ bool is_free(const Problem& p, ConstStrided x, const std::vector<RowState>* stat
     return lo < x[i] && x[i] < hi;
 }
 
+/// s_i = scale_i / A_ii in units of x; for a friction row at least |mu_i| s_n of its normal n,
+/// since its bound mu_i |x_n| is known only to that scale (the solver's certificate,
+/// friction_consistent in bpp_driver.cpp, uses the same). Without it a friction row whose own
+/// scale is rounding (x ~ 1e-13 beside a resting normal) read 0.5 on answers accurate to 1e-12.
+double row_scale(const Problem& p, const pivoting::SymmetricRows& A, const std::vector<double>& scale, int i) {
+    double s = scale[i] / A.diag(i);
+    if (i >= p.nub && p.findex != nullptr && p.findex[i] >= 0 && std::isfinite(p.hi[i])) {
+        const int n = p.findex[i];
+        s = std::max(s, std::abs(p.hi[i]) * scale[n] / A.diag(n));
+    }
+    return s;
+}
+
 }  // namespace
 
 std::pair<double, double> effective_bounds(const Problem& p, ConstStrided x, int i) {
@@ -85,7 +98,7 @@ Residuals compute_residuals(const Problem& p, const pivoting::SymmetricRows& A, 
         r.natural = std::max(r.natural, std::abs(x[i] - clamp_to(x[i] - w[i], bounds)));
         const double diag = A.diag(i);
         const double scaled = std::abs(x[i] - clamp_to(x[i] - w[i] / diag, bounds));
-        if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled * diag / scale[i]);
+        if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled / row_scale(p, A, scale, i));
         if (is_free(p, x, states, i)) r.free = std::max(r.free, std::abs(w[i]));
         if (p.findex != nullptr && p.findex[i] >= 0)
             r.friction = std::max(r.friction, std::abs(x[i]) - bounds.second);

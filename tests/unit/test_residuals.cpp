@@ -133,5 +133,28 @@ TEST(Residuals, ScaledResidualIsInvariantUnderRowScaling) {
     EXPECT_NEAR(compute_residuals(p, ConstStrided{x.data(), 1}).scaled_natural, before, 1e-12 * before);
 }
 
+/// A friction row's bound mu |x_n| is known only to its normal's scale: a friction impulse of
+/// rounding size beside a separating contact (x_n = 0) must not read as a large scaled residual.
+TEST(Residuals, FrictionRowsAreScaledByTheirNormals) {
+    auto p = problems::OwnedProblem::zeros("friction_beside_resting_normal", 3);
+    p.a(0, 0) = 2;
+    p.a(1, 0) = p.a(0, 1) = 0.5;
+    p.a(1, 1) = 1;
+    p.a(2, 2) = 1;
+    p.nub = 1;
+    p.lo[1] = 0;                   // normal
+    p.findex = {-1, -1, 1};        // row 2: friction on row 1
+    p.hi[2] = 0.5;
+    p.lo[2] = -0.5;
+    p.b = {2, 0.25, 1e-14};        // x = (1, 0, 1e-14): rows 0, 1 exact, row 2 off its bound 0 by 1e-14
+    const std::vector<double> x = {1, 0, 1e-14};
+    const Residuals r = compute_residuals(p, ConstStrided{x.data(), 1});
+    EXPECT_DOUBLE_EQ(r.natural, 1e-14);
+    EXPECT_DOUBLE_EQ(r.friction, 1e-14);
+    // the row's own scale is 2e-14 (0.5 by it); its normal's, times mu, is 0.375
+    EXPECT_LT(r.scaled_natural, 1e-13);
+    EXPECT_GT(r.scaled_natural, 1e-14);
+}
+
 }  // namespace
 }  // namespace ode_bpp

@@ -18,9 +18,10 @@ struct Residuals {
     /// natural / max(1, ||b||_inf) (Result::relative_natural_residual).
     double relative_natural = 0;
     /// Scale-free version: max_i |x_i - clamp(x_i - w_i / A_ii, lo_i(x), hi_i(x))| / s_i with the
-    /// row's own scale s_i = ((|A||x|)_i + |b_i|) / A_ii (0 where the numerator is 0). The
-    /// diagonal scaling keeps the same solution set and makes both terms units of x; this is the
-    /// quantity the per-row tolerance Options::tolerance bounds (Result::scaled_natural_residual).
+    /// row's own scale s_i = ((|A||x|)_i + |b_i|) / A_ii (0 where the numerator is 0), for a
+    /// friction row at least |mu_i| s_findex[i], as its bound is known only to its normal's scale.
+    /// The diagonal scaling keeps the same solution set and makes both terms units of x; this is
+    /// the quantity the per-row tolerance Options::tolerance bounds (Result::scaled_natural_residual).
     double scaled_natural = 0;
     /// ||A_FF x_F - (b_F - A_FT x_T)||_inf = max over free rows of |w_i| (Result::free_residual).
     double free = 0;

@@ -193,7 +193,8 @@ struct Result {
     std::vector<RowState> states; ///< final index set, original row order (for warm starts)
     std::vector<int> ordering;    ///< BPP methods: the permutation factored in (perm[new] = old)
     /// Scale-free natural residual: max_i |x_i - clamp(x_i - w_i/A_ii, lo_i(x), hi_i(x))| / s_i with
-    /// s_i = ((|A||x|)_i + |b_i|) / A_ii, the quantity Options::tolerance bounds (ode_bpp/residuals.h).
+    /// s_i = ((|A||x|)_i + |b_i|) / A_ii (friction rows: at least |mu_i| s_normal), the quantity
+    /// Options::tolerance bounds (ode_bpp/residuals.h).
     double scaled_natural_residual = 0;
     /// Deleted factors rejected by the loss-of-accuracy check and replaced by a refactorization.
     int accuracy_refactors = 0;

@@ -4,9 +4,9 @@
 // test, which cannot cycle on degenerate problems (Cottle, Pang & Stone, The Linear
 // Complementarity Problem, Sec. 4.4). On a copositive M that is not copositive-plus (the friction
 // LCP of friction_lcp.h) the path can still end on a secondary ray. With d = (1, ..., 1) it did
-// so on 13 % of the captured winch frames, from ties that d = 1 makes in the ratio test; with
-// d spread over [0.5, 1.5) (spread_covering_vector) on none of 300, and a second spread vector
-// finished every frame whose first path met a ray. Dense, O(N^2) per pivot on the basis
+// so on 11 % of the captured winch frames (135 of 1,200), from ties that d = 1 makes in the ratio
+// test; with d spread over [0.5, 1.5) (spread_covering_vector) on 2 of 1,200, and a second spread
+// vector finished both. Dense, O(N^2) per pivot on the basis
 // inverse: a last resort for the few problems that block pivoting does not finish.
 #pragma once
 

@@ -18,14 +18,6 @@ Eigen::MatrixXd dense(const SymmetricRows& A, double shift) {
     return D;
 }
 
-/// D(rows, cols).
-Eigen::MatrixXd block(const Eigen::MatrixXd& D, const std::vector<int>& rows, const std::vector<int>& cols) {
-    Eigen::MatrixXd out(rows.size(), cols.size());
-    for (std::size_t a = 0; a < rows.size(); ++a)
-        for (std::size_t c = 0; c < cols.size(); ++c) out(a, c) = D(rows[a], cols[c]);
-    return out;
-}
-
 }  // namespace
 
 std::optional<FrictionLcp> FrictionLcp::build(const BoxedLcp& lcp, const FrictionRows& friction, std::string& why) {
@@ -108,9 +100,9 @@ bool FrictionLcp::eliminate_unbounded(const Eigen::MatrixXd& A, const BoxedLcp& 
     const auto rhs = [&](const std::vector<int>& rows) {  // b_rows - A_rows,K x_K
         Eigen::VectorXd v(rows.size());
         for (std::size_t a = 0; a < rows.size(); ++a) v[a] = lcp.b[rows[a]];
-        return Eigen::VectorXd(v - block(A, rows, known) * x_known);
+        return Eigen::VectorXd(v - A(rows, known) * x_known);
     };
-    const Eigen::MatrixXd A_RR = block(A, bounded_, bounded_);
+    const Eigen::MatrixXd A_RR = A(bounded_, bounded_);
     const Eigen::VectorXd b_R = rhs(bounded_);
     if (unbounded_.empty()) {
         G_.resize(0, static_cast<Eigen::Index>(bounded_.size()));
@@ -118,12 +110,12 @@ bool FrictionLcp::eliminate_unbounded(const Eigen::MatrixXd& A, const BoxedLcp& 
         assemble(A_RR, b_R);
         return true;
     }
-    const Eigen::LLT<Eigen::MatrixXd> llt(block(A, unbounded_, unbounded_));
+    const Eigen::LLT<Eigen::MatrixXd> llt(A(unbounded_, unbounded_));
     if (llt.info() != Eigen::Success) {
         why = "the unbounded rows' block A_UU is not positive definite";
         return false;
     }
-    const Eigen::MatrixXd A_UR = block(A, unbounded_, bounded_);
+    const Eigen::MatrixXd A_UR = A(unbounded_, bounded_);
     G_ = llt.solve(A_UR);
     g_ = llt.solve(rhs(unbounded_));
     // S = A_RR - A_RU A_UU^-1 A_UR,  b~ = b_R - A_RU A_UU^-1 (b_U - A_UK x_K)

@@ -17,7 +17,7 @@ constexpr double kTieTolerance = 1e-12;
 /// every max(kMinRefreshPeriod, N) pivots, which costs as much as N pivots (O(N^3)).
 constexpr int kMinRefreshPeriod = 64;
 
-/// The tableau I u - M z - d z0 = q, d = 1, kept as B^-1 and B^-1 q. Variables: u_i = i,
+/// The tableau I u - M z - d z0 = q, kept as B^-1 and B^-1 q. Variables: u_i = i,
 /// z_i = N + i, z0 = 2N.
 class LemkeTableau {
 public:

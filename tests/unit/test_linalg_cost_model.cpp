@@ -19,22 +19,10 @@ SkylineShape random_shape(int n, std::mt19937& rng) {
 
 bool stored(const SkylineShape& s, int r, int k) { return k <= r && r <= s.sky[k]; }
 
-/// Counts, entry by entry, what the left-looking factorization does from column k0 on: one
-/// multiply-add for each stored L(r,k) (k >= k0) and each earlier column j holding both L(k,j)
-/// and L(r,j), plus one per stored entry of column k for the pivot and scaling.
-double counted_refactor(const SkylineShape& s, int k0) {
-    double count = 0;
-    for (int k = k0; k < s.n; ++k)
-        for (int r = k; r < s.n; ++r) {
-            if (!stored(s, r, k)) continue;
-            count += 1;
-            for (int j = 0; j < k; ++j)
-                if (stored(s, k, j) && stored(s, r, j)) count += 1;
-        }
-    return count;
-}
-
-/// The same with the indices in `removed` skipped as columns and as the earlier columns j.
+/// Counts, entry by entry, what the left-looking factorization does from column k0 on, with the
+/// indices in `removed` skipped as columns and as the earlier columns j: one multiply-add for each
+/// stored L(r,k) (k >= k0) and each earlier column j holding both L(k,j) and L(r,j), plus one per
+/// stored entry of column k for the pivot and scaling.
 double counted_refactor_removing(const SkylineShape& s, int k0, const std::vector<char>& removed) {
     double count = 0;
     for (int k = k0; k < s.n; ++k) {
@@ -47,6 +35,10 @@ double counted_refactor_removing(const SkylineShape& s, int k0, const std::vecto
         }
     }
     return count;
+}
+
+double counted_refactor(const SkylineShape& s, int k0) {
+    return counted_refactor_removing(s, k0, std::vector<char>(static_cast<std::size_t>(s.n), 0));
 }
 
 /// Entries of the trailing columns k > i inside the storage (each one rotated against sigma).

@@ -2,9 +2,12 @@
 
 namespace ode_bpp {
 
-void OrderingCache::signature(const dMLCP& p, std::vector<int>& structure) {
+void OrderingCache::signature(const dMLCP& p, const RowKey& first_row, Signature& structure) {
     structure.clear();
-    structure.reserve(1 + 3 * static_cast<std::size_t>(p.nj));
+    structure.reserve(5 + 3 * static_cast<std::size_t>(p.nj));
+    structure.push_back(reinterpret_cast<std::intptr_t>(first_row.a));
+    structure.push_back(reinterpret_cast<std::intptr_t>(first_row.b));
+    structure.push_back(first_row.ordinal);
     structure.push_back(p.m);
     for (int k = 0; k < p.nj; ++k) {
         structure.push_back(p.joints[k].row);
@@ -13,12 +16,12 @@ void OrderingCache::signature(const dMLCP& p, std::vector<int>& structure) {
     }
 }
 
-const std::vector<int>* OrderingCache::find(const std::vector<int>& structure) const {
+const std::vector<int>* OrderingCache::find(const Signature& structure) const {
     const auto it = orderings_.find(structure);
     return it == orderings_.end() ? nullptr : &it->second;
 }
 
-void OrderingCache::store(const std::vector<int>& structure, const std::vector<int>& ordering) {
+void OrderingCache::store(const Signature& structure, const std::vector<int>& ordering) {
     if (orderings_.size() >= kMaxIslands && orderings_.count(structure) == 0) orderings_.clear();
     orderings_[structure] = ordering;
 }

@@ -1,6 +1,5 @@
 #include "ode/row_identity.h"
 
-#include <algorithm>
 #include <functional>
 #include <map>
 #include <utility>
@@ -36,30 +35,33 @@ void row_keys(const dMLCP& problem, std::vector<RowKey>& keys) {
     }
 }
 
-bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::vector<RowState>& states) const {
+void RowStateMemory::enter_step(std::uint64_t step) {
+    if (steps_ > 0 && step == last_world_step_) return;
+    last_world_step_ = step;
+    ++steps_;
+    for (auto it = rows_.begin(); it != rows_.end();) {
+        if (steps_ - it->second.seen > kKeepSteps) it = rows_.erase(it);
+        else ++it;
+    }
+}
+
+bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step, std::vector<RowState>& states) {
+    enter_step(step);
     states.assign(keys.size(), RowState::Free);
     bool any = false;
     for (std::size_t i = 0; i < keys.size(); ++i) {
-        auto it = current_.find(keys[i]);
-        if (it == current_.end()) {
-            it = previous_.find(keys[i]);
-            if (it == previous_.end()) continue;
-        }
-        states[i] = it->second;
+        const auto it = rows_.find(keys[i]);
+        if (it == rows_.end()) continue;
+        states[i] = it->second.state;
         any = true;
     }
     return any;
 }
 
-void RowStateMemory::remember(const std::vector<RowKey>& keys, const std::vector<RowState>& states) {
+void RowStateMemory::remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states) {
     if (keys.size() != states.size()) return;
-    // a generation holds about one step's rows: beyond twice that, start a new one
-    rows_per_generation_ = std::max(rows_per_generation_, keys.size());
-    if (current_.size() + keys.size() > 2 * rows_per_generation_ + 64) {
-        previous_ = std::move(current_);
-        current_.clear();
-    }
-    for (std::size_t i = 0; i < keys.size(); ++i) current_[keys[i]] = states[i];
+    enter_step(step);
+    for (std::size_t i = 0; i < keys.size(); ++i) rows_[keys[i]] = Entry{states[i], steps_};
 }
 
 }  // namespace ode_bpp

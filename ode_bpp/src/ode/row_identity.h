@@ -33,17 +33,36 @@ struct RowKeyHash {
 void row_keys(const dMLCP& problem, std::vector<RowKey>& keys);
 
 /// The index sets of the most recent steps, by row identity.
+///
+/// Ageing counts world steps (dMLCP::step), never calls: the islands of one step are solved in
+/// any order, or concurrently, and what an island recalls must not depend on which of its
+/// neighbours finished first. Within a step islands hold disjoint keys, so an island only ever
+/// sees what earlier steps stored.
 class RowStateMemory {
 public:
-    /// states: output, one per key; rows never seen start Free. Returns true if any row was known.
-    bool recall(const std::vector<RowKey>& keys, std::vector<RowState>& states) const;
-    /// Stores the final index set of an island. Old entries are dropped once the memory holds
-    /// several steps' worth of rows, so vanished contacts do not accumulate.
-    void remember(const std::vector<RowKey>& keys, const std::vector<RowState>& states);
+    /// Entries not refreshed for this many steps are dropped (a contact that vanishes for one
+    /// step is still recalled when it returns).
+    static constexpr std::uint64_t kKeepSteps = 2;
+
+    /// step: the world step of the island. states: output, one per key; rows never seen start
+    /// Free. Returns true if any row was known.
+    bool recall(const std::vector<RowKey>& keys, std::uint64_t step, std::vector<RowState>& states);
+    /// Stores the final index set of an island solved in world step `step`.
+    void remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states);
+    std::size_t size() const { return rows_.size(); }
 
 private:
-    std::unordered_map<RowKey, RowState, RowKeyHash> current_, previous_;
-    std::size_t rows_per_generation_ = 0;
+    struct Entry {
+        RowState state;
+        std::uint64_t seen;  ///< steps_ when stored
+    };
+    /// Counts a new step when `step` differs from the last one seen (a reset counts too), and
+    /// drops the entries older than kKeepSteps.
+    void enter_step(std::uint64_t step);
+
+    std::unordered_map<RowKey, Entry, RowKeyHash> rows_;
+    std::uint64_t last_world_step_ = 0;
+    std::uint64_t steps_ = 0;  ///< distinct world steps seen so far
 };
 
 }  // namespace ode_bpp

@@ -26,7 +26,7 @@ namespace {
 
 struct WorldState {
     WorldSettings settings;
-    RowStateMemory memory;       // index sets of the previous step, by row identity
+    RowStateMemory memory;       // index sets of the previous steps, by row identity
     OrderingCache orderings;     // row orderings of the previous steps, by island structure
     Result last;
 };
@@ -108,8 +108,13 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     const Method method = *static_cast<const Method*>(userdata);
     thread_local std::vector<int> block_row, block_body;
     thread_local std::vector<RowKey> keys;
-    thread_local std::vector<int> structure;
-    if (problem->joints != nullptr) fill_blocks(*problem, block_row, block_body);
+    thread_local OrderingCache::Signature structure;
+    if (problem->joints != nullptr) {
+        fill_blocks(*problem, block_row, block_body);
+        row_keys(*problem, keys);
+        if (!keys.empty()) OrderingCache::signature(*problem, keys.front(), structure);
+    }
+    const bool known_rows = problem->joints != nullptr && !keys.empty();
     const Problem q = view_of(*problem, block_row, block_body);
 
     Options options;
@@ -118,12 +123,8 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
         std::lock_guard<std::mutex> g(hook().lock);
         WorldState& ws = hook().worlds[problem->world];
         options = ws.settings.options;
-        if (ws.settings.warm_start && problem->joints != nullptr) {
-            row_keys(*problem, keys);
-            warm = ws.memory.recall(keys, options.warm_start);
-        }
-        if (problem->joints != nullptr) {
-            OrderingCache::signature(*problem, structure);
+        if (ws.settings.warm_start && known_rows) warm = ws.memory.recall(keys, problem->step, options.warm_start);
+        if (known_rows) {
             if (const std::vector<int>* known = ws.orderings.find(structure)) options.ordering = *known;
         }
     }
@@ -142,8 +143,8 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     std::lock_guard<std::mutex> g(hook().lock);
     HookState& h = hook();
     WorldState& ws = h.worlds[problem->world];
-    if (problem->joints != nullptr && status != dMLCPFailed) ws.memory.remember(keys, r.states);
-    if (problem->joints != nullptr && !r.ordering.empty() && r.ordering != options.ordering)
+    if (known_rows && status != dMLCPFailed) ws.memory.remember(keys, problem->step, r.states);
+    if (known_rows && !r.ordering.empty() && r.ordering != options.ordering)
         ws.orderings.store(structure, r.ordering);
     ws.last = r;
     h.counters.islands += 1;

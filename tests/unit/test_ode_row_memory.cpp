@@ -1,0 +1,147 @@
+// The hook's memory across world steps: warm-start index sets by row identity (RowStateMemory)
+// and row orderings by island (OrderingCache). Both must age by world steps and give each
+// island the same answer whatever order the islands of a step are solved in (ODE's thread pool
+// solves them concurrently).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "ode/ordering_cache.h"
+#include "ode/row_identity.h"
+
+namespace ode_bpp {
+namespace {
+
+/// Island k of a scene of `islands` islands: `rows` rows keyed by (joint k, row r).
+std::vector<RowKey> island_keys(const std::vector<int>& joints, int k, int rows) {
+    std::vector<RowKey> keys(static_cast<std::size_t>(rows));
+    for (int r = 0; r < rows; ++r) {
+        keys[r].a = &joints[k];
+        keys[r].row = r;
+    }
+    return keys;
+}
+
+/// A state that varies with the island, the row and the step, so that stale entries show.
+RowState state_of(int island, int row, std::uint64_t step) {
+    switch ((island + row + static_cast<int>(step)) % 3) {
+        case 0: return RowState::Free;
+        case 1: return RowState::AtLo;
+        default: return RowState::AtHi;
+    }
+}
+
+/// Steps a memory through `steps` steps of `islands` islands of different sizes, solved in the
+/// order `order_of(step)`, and returns what each island recalled at each step.
+template <class Order>
+std::vector<std::vector<RowState>> run_steps(int islands, int steps, Order order_of) {
+    std::vector<int> joints(static_cast<std::size_t>(islands));
+    RowStateMemory memory;
+    std::vector<std::vector<RowState>> recalled(static_cast<std::size_t>(islands * steps));
+    for (int s = 0; s < steps; ++s) {
+        const std::uint64_t step = 100 + static_cast<std::uint64_t>(s);
+        for (int k : order_of(s)) {
+            const int rows = 6 + 7 * k;  // a step holds far more rows than its largest island
+            const std::vector<RowKey> keys = island_keys(joints, k, rows);
+            std::vector<RowState> states;
+            memory.recall(keys, step, states);
+            recalled[static_cast<std::size_t>(s * islands + k)] = states;
+            std::vector<RowState> solved(keys.size());
+            for (int r = 0; r < rows; ++r) solved[r] = state_of(k, r, step);
+            memory.remember(keys, step, solved);
+        }
+    }
+    return recalled;
+}
+
+TEST(RowStateMemory, AnIslandRecallsThePreviousStepWhateverOrderTheIslandsRunIn) {
+    constexpr int kIslands = 8, kSteps = 12;
+    const auto in_order = [](int) {
+        std::vector<int> order(kIslands);
+        std::iota(order.begin(), order.end(), 0);
+        return order;
+    };
+    std::mt19937 rng(7);
+    const auto shuffled = [&](int) {
+        std::vector<int> order = in_order(0);
+        std::shuffle(order.begin(), order.end(), rng);
+        return order;
+    };
+    const auto a = run_steps(kIslands, kSteps, in_order);
+    const auto b = run_steps(kIslands, kSteps, shuffled);
+    EXPECT_EQ(a, b);
+    // and what is recalled is the previous step's answer, row by row
+    for (int s = 1; s < kSteps; ++s)
+        for (int k = 0; k < kIslands; ++k)
+            for (int r = 0; r < 6 + 7 * k; ++r)
+                ASSERT_EQ(a[s * kIslands + k][r], state_of(k, r, 100 + static_cast<std::uint64_t>(s) - 1))
+                    << "step " << s << " island " << k << " row " << r;
+}
+
+TEST(RowStateMemory, RowsAbsentForMoreThanTheKeptStepsAreForgotten) {
+    std::vector<int> joints(2);
+    RowStateMemory memory;
+    std::vector<RowState> states;
+    const std::vector<RowKey> flicker = island_keys(joints, 0, 3), steady = island_keys(joints, 1, 2);
+    memory.remember(flicker, 1, std::vector<RowState>(3, RowState::AtLo));
+    for (std::uint64_t step = 2; step <= 1 + RowStateMemory::kKeepSteps; ++step) {
+        EXPECT_TRUE(memory.recall(flicker, step, states)) << "a contact absent for " << step - 1 << " step(s)";
+        EXPECT_EQ(states, std::vector<RowState>(3, RowState::AtLo));
+        memory.remember(steady, step, std::vector<RowState>(2, RowState::Free));
+    }
+    EXPECT_FALSE(memory.recall(flicker, 2 + RowStateMemory::kKeepSteps, states));
+    EXPECT_EQ(states, std::vector<RowState>(3, RowState::Free));
+    EXPECT_EQ(memory.size(), steady.size());
+}
+
+TEST(RowStateMemory, AStepNumberThatGoesBackStillStartsANewStep) {
+    std::vector<int> joints(1);
+    RowStateMemory memory;
+    std::vector<RowState> states;
+    const std::vector<RowKey> keys = island_keys(joints, 0, 2);
+    memory.remember(keys, 50, std::vector<RowState>(2, RowState::AtHi));
+    // a world whose statistics were reset or a new world at the same address: steps restart
+    for (std::uint64_t step : {1, 2, 3}) memory.recall({}, step, states);
+    EXPECT_FALSE(memory.recall(keys, 4, states));
+}
+
+TEST(OrderingCache, EqualIslandsWithDifferentIdentitiesKeepTheirOwnOrderings) {
+    dMLCPJoint joints[2] = {};
+    joints[0].row = 0;
+    joints[0].m = 3;
+    joints[0].body[0] = 0;
+    joints[0].body[1] = -1;
+    joints[1] = joints[0];
+    joints[1].row = 3;
+    joints[1].body[1] = 0;
+    dMLCP problem = {};
+    problem.m = 6;
+    problem.nj = 2;
+    problem.joints = joints;
+    int pile_a = 0, pile_b = 0;
+    RowKey first_a, first_b;
+    first_a.a = &pile_a;
+    first_b.a = &pile_b;
+
+    OrderingCache cache;
+    OrderingCache::Signature a, b;
+    OrderingCache::signature(problem, first_a, a);
+    OrderingCache::signature(problem, first_b, b);
+    ASSERT_NE(a, b);
+    cache.store(a, {0, 1, 2, 3, 4, 5});
+    cache.store(b, {5, 4, 3, 2, 1, 0});
+    ASSERT_NE(cache.find(a), nullptr);
+    EXPECT_EQ(*cache.find(a), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+    // a change of structure (another joint, other bodies) is another island
+    joints[1].body[1] = -1;
+    OrderingCache::Signature changed;
+    OrderingCache::signature(problem, first_a, changed);
+    EXPECT_EQ(cache.find(changed), nullptr);
+}
+
+}  // namespace
+}  // namespace ode_bpp

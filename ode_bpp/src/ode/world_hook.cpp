@@ -17,6 +17,7 @@
 #include <cstring>
 #include <mutex>
 #include <unordered_map>
+#include <utility>
 
 #include "ode/ordering_cache.h"
 #include "ode/row_identity.h"
@@ -132,7 +133,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     if (!warm) options.warm_start.clear();
 
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
-    const Result r = solve(q, options, Strided{problem->pairsbx + 1, 2});
+    Result r = solve(q, options, Strided{problem->pairsbx + 1, 2});
 
     const dMLCPStatus status = to_ode_status(r);
     stats->pivots = r.pivots;
@@ -146,12 +147,12 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     if (known_rows && status != dMLCPFailed) ws.memory.remember(keys, problem->step, r.states);
     if (known_rows && !r.ordering.empty() && r.ordering != options.ordering)
         ws.orderings.store(structure, r.ordering);
-    ws.last = r;
     h.counters.islands += 1;
     h.counters.warm_started += warm ? 1 : 0;
     h.counters.converged += r.status == Status::Converged ? 1 : 0;
     h.counters.fallbacks += r.status == Status::FallbackUsed ? 1 : 0;
     h.counters.failures += status == dMLCPFailed ? 1 : 0;
+    ws.last = std::move(r);  // last use of r: no copy of its vectors per island
     return status;
 }
 

@@ -96,6 +96,7 @@ TEST(PivotingMurty, PureBlockPivotingCyclesOnTheNamedProblem) {
     const auto p = problems::block_pivoting_cycle();
     Options o;
     o.murty_after = 1 << 30;
+    o.rescue_after = 0;  // no regularization rescue either: block steps alone
     o.max_pivots = 200;
     std::vector<double> x;
     const Result r = run(p, Method::BppChol, x, o);
@@ -114,6 +115,7 @@ TEST(PivotingMurty, SafeguardEngagesAndConvergesToTheEnumeratedAnswer) {
         for (int murty_after : {0, 1, 3, 10}) {
             Options o;
             o.murty_after = murty_after;
+            o.rescue_after = 0;  // the safeguard alone, without the regularization rescue
             std::vector<double> x;
             const Result r = run(p, m, x, o);
             ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " murty_after " << murty_after;
@@ -161,19 +163,54 @@ TEST(PivotingLoop, PinnedRowsStayAtTheirValueAndRowsWithInfiniteBoundsStayFree) 
     }
 }
 
+/// The loop's fixed-bound LCP of a problem in its own order.
+pivoting::BoxedLcp boxed_lcp_of(const problems::OwnedProblem& owned, const pivoting::SymmetricRows& A) {
+    pivoting::BoxedLcp lcp;
+    lcp.A = &A;
+    lcp.b = owned.b;
+    lcp.lo = owned.lo;
+    lcp.hi = owned.hi;
+    lcp.always_free.assign(owned.n, 0);
+    for (int i = 0; i < owned.n; ++i) lcp.always_free[i] = std::isinf(lcp.lo[i]) && std::isinf(lcp.hi[i]);
+    return lcp;
+}
+
+TEST(PivotingLoop, ARunThatMayStallStopsAtTheFirstRevisitedIndexSet) {
+    const auto owned = problems::block_pivoting_cycle();
+    const pivoting::SymmetricRows A(owned.view(), {});
+    auto solver = pivoting::make_dense_refactor_solver(A);
+    ASSERT_TRUE(solver->prepare(0));
+    const pivoting::BoxedLcp lcp = boxed_lcp_of(owned, A);
+    pivoting::PivotSettings settings;
+    settings.max_pivots = 200;
+    settings.murty_after = 1 << 20;  // block steps only: this problem cycles among them
+    settings.stall_after = 1 << 20;  // far beyond the budget: only the cycle can stop the run
+    std::vector<RowState> states;
+    std::vector<double> x;
+    pivoting::PivotCounters counters;
+    const auto outcome = pivoting::pivot_fixed_bounds(lcp, *solver, settings, states, x, counters);
+    EXPECT_EQ(outcome, pivoting::LoopOutcome::Stalled);
+    // 3 rows give at most 27 index sets: a cycle shows within 27 steps
+    EXPECT_LE(counters.pivots, 27);
+    EXPECT_EQ(counters.murty_pivots, 0);
+    for (int i = 0; i < owned.n; ++i) {
+        EXPECT_GE(x[i], lcp.lo[i]);
+        EXPECT_LE(x[i], lcp.hi[i]);
+    }
+    // a run that may not stall (the plain attempt) keeps going: Murty's rule breaks the cycle
+    settings.stall_after = 0;
+    settings.murty_after = 3;
+    states.clear();
+    EXPECT_EQ(pivoting::pivot_fixed_bounds(lcp, *solver, settings, states, x, counters), pivoting::LoopOutcome::Converged);
+}
+
 TEST(PivotingLoop, DirectCallLeavesTheFinalIndexSetAndCountsSteps) {
     const auto owned = problems::random_boxed_mlcp(10, 0, 0, 1e2, 21);
     const Problem p = owned.view();
     const pivoting::SymmetricRows A(p, {});
     auto solver = pivoting::make_dense_refactor_solver(A);
     ASSERT_TRUE(solver->prepare(0));
-    pivoting::BoxedLcp lcp;
-    lcp.A = &A;
-    lcp.b = owned.b;
-    lcp.lo = owned.lo;
-    lcp.hi = owned.hi;
-    lcp.always_free.assign(p.n, 0);
-    for (int i = 0; i < p.n; ++i) lcp.always_free[i] = std::isinf(lcp.lo[i]) && std::isinf(lcp.hi[i]);
+    const pivoting::BoxedLcp lcp = boxed_lcp_of(owned, A);
     std::vector<RowState> states;
     std::vector<double> x;
     pivoting::PivotCounters counters;

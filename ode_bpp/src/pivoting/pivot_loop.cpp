@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "pivoting/friction_link.h"
@@ -37,6 +38,8 @@ struct Workspace {
     std::vector<double> lo, hi;  ///< the bounds in force (moving friction bounds change)
     std::vector<double> best_lo, best_hi;
     std::vector<int> linked;  ///< linked friction rows of the current step
+    std::vector<std::uint64_t> visited_hash;  ///< index sets entered by block steps (stall_after > 0)
+    std::vector<RowState> visited;            ///< the same sets, n entries each
 };
 
 [[gnu::noinline]] Workspace& thread_workspace() {
@@ -60,7 +63,13 @@ public:
         bool in_murty = false;
         int last_progress = 0;           // step of the latest new least count
         best_count_ = n_ + 1;
+        visited_hash_.clear();
+        visited_.clear();
         for (int step = 0; step < settings_.max_pivots; ++step) {
+            if (settings_.stall_after > 0 && !in_murty && revisits(states)) {
+                restore_best(states, x);
+                return LoopOutcome::Stalled;
+            }
             if (!solve_step(states, x)) return LoopOutcome::Breakdown;
             const Infeasibility& inf = classify(states, x);
             remember_if_best(inf, states, x);
@@ -109,6 +118,22 @@ private:
             else if (s == RowState::AtLo && std::isinf(lo_[i])) s = RowState::Free;
             else if (s == RowState::AtHi && std::isinf(hi_[i])) s = RowState::Free;
         }
+    }
+
+    /// True if this index set was entered before in this run; otherwise records it. Block steps
+    /// are deterministic (x_F from Eq. 6, then Eq. 4), so a revisit is a cycle: on nearly
+    /// redundant contact rows the rescue stages met cycles of 2-6 sets, which the stall count
+    /// alone let run 6-30 steps (winch, forklift, parkour at ODE's CFM 1e-10).
+    bool revisits(const std::vector<RowState>& states) {
+        std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the states
+        for (RowState s : states) h = (h ^ static_cast<std::uint64_t>(static_cast<int>(s) + 1)) * 1099511628211ULL;
+        const std::size_t n = states.size();
+        for (std::size_t k = 0; k < visited_hash_.size(); ++k)
+            if (visited_hash_[k] == h && std::equal(states.begin(), states.end(), visited_.begin() + static_cast<std::ptrdiff_t>(k * n)))
+                return true;
+        visited_hash_.push_back(h);
+        visited_.insert(visited_.end(), states.begin(), states.end());
+        return false;
     }
 
     /// One pivot step: x_T at its bounds (Alg. 1 lines 6-7), x_F from Eq. 6, then w (line 9).
@@ -323,6 +348,8 @@ private:
     std::vector<double>&lo_ = ws_.lo, &hi_ = ws_.hi;  ///< the bounds in force (moving friction bounds change)
     std::vector<double>&best_lo_ = ws_.best_lo, &best_hi_ = ws_.best_hi;
     std::vector<int>& linked_ = ws_.linked;  ///< linked friction rows of the current step
+    std::vector<std::uint64_t>& visited_hash_ = ws_.visited_hash;
+    std::vector<RowState>& visited_ = ws_.visited;
 };
 
 }  // namespace

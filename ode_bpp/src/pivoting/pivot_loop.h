@@ -16,7 +16,10 @@ struct PivotSettings {
     double tolerance = 1e-9; ///< relative, scaled per row (see classify in pivot_loop.cpp)
     bool record_steps = true;
     /// Steps without a new least count of infeasible rows after which the run gives up with
-    /// LoopOutcome::Stalled (in the block and in Murty's phase alike); 0: never.
+    /// LoopOutcome::Stalled (in the block and in Murty's phase alike); 0: never. A run that may
+    /// stall also stalls as soon as a block step returns to an index set it has already visited:
+    /// a block step is a function of the index set, so the run has entered a cycle and waiting
+    /// only repeats it.
     int stall_after = 0;
 };
 
@@ -35,7 +38,8 @@ struct PivotCounters {
 enum class LoopOutcome {
     Converged,      ///< no row infeasible: x solves the boxed LCP to the scaled tolerance
     MaxIterations,  ///< budget spent: x is the least infeasible iterate, projected onto the bounds
-    Stalled,        ///< settings.stall_after steps without progress; x and states as for MaxIterations
+    Stalled,        ///< settings.stall_after steps without progress, or a cycle of block steps;
+                    ///< x and states as for MaxIterations
     Breakdown,      ///< the strategy met a non-positive pivot; x and states are not meaningful
 };
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ode_bpp/ode.h"
@@ -119,6 +120,37 @@ TEST(OdeHook, StatisticsNameTheSolverAndCountRows) {
         EXPECT_GE(last.max_rows, 10);            // two hinges: 5 rows each
         EXPECT_EQ(last.failures, 0) << solver;
         EXPECT_GT(total.seconds, 0.0);
+    }
+}
+
+/// dMLCP::step of every island, in call order, with the dWorldStep it came from.
+struct StepLog {
+    int world_step = 0;
+    std::vector<std::pair<int, unsigned long>> seen;  ///< (world step, dMLCP::step)
+};
+
+void log_step(const dMLCP* p, const dMLCPIslandStats* stats, void* data) {
+    if (stats != nullptr) return;
+    auto* log = static_cast<StepLog*>(data);
+    log->seen.emplace_back(log->world_step, p->step);
+}
+
+TEST(OdeHook, IslandsOfOneStepShareItsStepNumberWhichResetsOfTheStatisticsLeaveAlone) {
+    OdeLifetime ode;
+    SmallScene s("bpp");
+    StepLog log;
+    dWorldSetMLCPObserver(s.world, &log_step, &log);
+    for (log.world_step = 0; log.world_step < 10; ++log.world_step) {
+        if (log.world_step == 5) dWorldResetMLCPStats(s.world);
+        s.step();
+    }
+    dWorldSetMLCPObserver(s.world, nullptr, nullptr);
+    ASSERT_GE(log.seen.size(), 20u);  // two islands a step
+    for (std::size_t k = 1; k < log.seen.size(); ++k) {
+        const auto [prev_step, prev_number] = log.seen[k - 1];
+        const auto [step, number] = log.seen[k];
+        // the same dWorldStep: the same number; the next: one more, the statistics' reset too
+        EXPECT_EQ(number - prev_number, static_cast<unsigned long>(step - prev_step)) << "island " << k;
     }
 }
 

@@ -14,6 +14,7 @@
 #include "pivoting/lemke.h"
 #include "pivoting/symmetric_rows.h"
 #include "problems/generators.h"
+#include "test_pivoting_support.h"
 
 namespace ode_bpp::pivoting {
 namespace {
@@ -122,29 +123,7 @@ TEST(Lemke, SpreadCoveringVectorsArePositiveAndDiffer) {
     EXPECT_EQ(a, spread_covering_vector(50, 0));  // reproducible
 }
 
-/// The driver's BoxedLcp of a problem in its own order (no permutation, fixed bounds as given).
-struct DriverLcp {
-    SymmetricRows A;
-    BoxedLcp lcp;
-    std::vector<int> rows, normals;
-    std::vector<double> mu;
-    explicit DriverLcp(const Problem& p) : A(p, {}) {
-        lcp.A = &A;
-        for (int i = 0; i < p.n; ++i) {
-            const bool unbounded = i < p.nub || (p.lo[i] == -INFINITY && p.hi[i] == INFINITY);
-            lcp.b.push_back(p.b[i]);
-            lcp.lo.push_back(unbounded ? -INFINITY : p.lo[i]);
-            lcp.hi.push_back(unbounded ? INFINITY : p.hi[i]);
-            lcp.always_free.push_back(unbounded);
-            if (p.findex != nullptr && p.findex[i] >= 0) {
-                rows.push_back(i);
-                normals.push_back(p.findex[i]);
-                mu.push_back(p.hi[i]);
-                lcp.always_free.back() = 0;
-            }
-        }
-    }
-};
+using test::DriverLcp;
 
 TEST(FrictionLcp, LemkesAnswerSolvesTheMlcpWithBoundsFromItsOwnNormals) {
     for (std::uint64_t seed = 1; seed <= 8; ++seed) {

@@ -12,6 +12,7 @@
 #include "problems/generators.h"
 #include "problems/named.h"
 #include "problems/oracle.h"
+#include "test_pivoting_support.h"
 
 namespace ode_bpp {
 namespace {
@@ -163,24 +164,12 @@ TEST(PivotingLoop, PinnedRowsStayAtTheirValueAndRowsWithInfiniteBoundsStayFree) 
     }
 }
 
-/// The loop's fixed-bound LCP of a problem in its own order.
-pivoting::BoxedLcp boxed_lcp_of(const problems::OwnedProblem& owned, const pivoting::SymmetricRows& A) {
-    pivoting::BoxedLcp lcp;
-    lcp.A = &A;
-    lcp.b = owned.b;
-    lcp.lo = owned.lo;
-    lcp.hi = owned.hi;
-    lcp.always_free.assign(owned.n, 0);
-    for (int i = 0; i < owned.n; ++i) lcp.always_free[i] = std::isinf(lcp.lo[i]) && std::isinf(lcp.hi[i]);
-    return lcp;
-}
-
 TEST(PivotingLoop, ARunThatMayStallStopsAtTheFirstRevisitedIndexSet) {
     const auto owned = problems::block_pivoting_cycle();
-    const pivoting::SymmetricRows A(owned.view(), {});
-    auto solver = pivoting::make_dense_refactor_solver(A);
+    const pivoting::test::DriverLcp driver(owned.view());
+    const pivoting::BoxedLcp& lcp = driver.lcp;
+    auto solver = pivoting::make_dense_refactor_solver(driver.A);
     ASSERT_TRUE(solver->prepare(0));
-    const pivoting::BoxedLcp lcp = boxed_lcp_of(owned, A);
     pivoting::PivotSettings settings;
     settings.max_pivots = 200;
     settings.murty_after = 1 << 20;  // block steps only: this problem cycles among them
@@ -207,10 +196,10 @@ TEST(PivotingLoop, ARunThatMayStallStopsAtTheFirstRevisitedIndexSet) {
 TEST(PivotingLoop, DirectCallLeavesTheFinalIndexSetAndCountsSteps) {
     const auto owned = problems::random_boxed_mlcp(10, 0, 0, 1e2, 21);
     const Problem p = owned.view();
-    const pivoting::SymmetricRows A(p, {});
-    auto solver = pivoting::make_dense_refactor_solver(A);
+    const pivoting::test::DriverLcp driver(p);
+    const pivoting::BoxedLcp& lcp = driver.lcp;
+    auto solver = pivoting::make_dense_refactor_solver(driver.A);
     ASSERT_TRUE(solver->prepare(0));
-    const pivoting::BoxedLcp lcp = boxed_lcp_of(owned, A);
     std::vector<RowState> states;
     std::vector<double> x;
     pivoting::PivotCounters counters;

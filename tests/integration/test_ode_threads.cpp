@@ -8,6 +8,7 @@
 // the order in which islands finish (tests/unit/test_ode_row_memory.cpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
@@ -23,10 +24,11 @@ struct OdeLifetime {
 };
 
 /// Separate islands: piles of frictional boxes (skyline path, > 32 rows) and hinge chains
-/// (dense path), far enough apart never to touch.
+/// (dense path), far enough apart never to touch. nudge: box (k, level) starts nudge*(k+1)*(level+1)
+/// metres off its pile's axis.
 class IslandField {
 public:
-    IslandField() {
+    explicit IslandField(double nudge = 0) {
         world = dWorldCreate();
         space = dHashSpaceCreate(nullptr);
         contacts = dJointGroupCreate(0);
@@ -34,7 +36,8 @@ public:
         dCreatePlane(space, 0, 0, 1, 0);
         for (int k = 0; k < 4; ++k) {
             for (int level = 0; level < 3; ++level)
-                add_box(6.0 * k, 0, 0.25 + 0.5 * level, level == 2 ? 50.0 : 1.0);  // heavy on top
+                add_box(6.0 * k + nudge * (k + 1) * (level + 1), 0, 0.25 + 0.5 * level,
+                        level == 2 ? 50.0 : 1.0);  // heavy on top
             add_chain(6.0 * k, 8, 6);
         }
     }
@@ -125,8 +128,9 @@ private:
     dThreadingThreadPoolID pool_;
 };
 
-std::vector<double> run(const char* solver, int threads, int steps, ode_bpp::HookCounters* counters) {
-    IslandField field;
+std::vector<double> run(const char* solver, int threads, int steps, ode_bpp::HookCounters* counters,
+                        double nudge = 0) {
+    IslandField field(nudge);
     EXPECT_EQ(dWorldSetMLCPSolver(field.world, solver), 1) << solver;
     const ode_bpp::HookCounters before = ode_bpp::hook_counters();
     {
@@ -157,6 +161,27 @@ TEST(OdeThreads, ThreadPoolIslandsGiveTheSingleThreadedMotion) {
             ASSERT_TRUE(std::isfinite(threaded[i])) << solver << " coordinate " << i;
             EXPECT_NEAR(serial[i], threaded[i], 1e-6) << solver << " coordinate " << i;
         }
+    }
+}
+
+// Four boxes on each face, CFM 1e-10: equal and opposite friction at two contacts is an internal
+// force that only the CFM resists, so an index set with friction rows at opposite bounds passed
+// the 1e-9 tolerance with multipliers of the wrong sign, and warm starts kept it from step to
+// step. Such piles slid by centimetres after a nudge of 1e-10 m (7 in 300 nudges; the first eight
+// listed here did). The polish of the pivoting loop must leave the motion a smooth function of
+// the nudge: 180 steps amplify it about tenfold.
+TEST(OdeStacks, ARestingPileRespondsSmoothlyToTinyNudges) {
+    OdeLifetime ode;
+    constexpr int kSteps = 180;
+    ode_bpp::HookCounters counters{};
+    const std::vector<double> still = run("bpp", 1, kSteps, &counters);
+    std::vector<double> nudges = {3.699e-11, 6.028e-11, 8.905e-11, 1.0686e-10, 1.2604e-10, 1.456e-09, 7.189e-09, 8.008e-09};
+    for (double e = 1e-11; e < 1e-8; e *= 2.5) nudges.push_back(e);
+    for (double nudge : nudges) {
+        const std::vector<double> moved = run("bpp", 1, kSteps, &counters, nudge);
+        double worst = 0;
+        for (std::size_t i = 0; i < still.size(); ++i) worst = std::max(worst, std::abs(moved[i] - still[i]));
+        EXPECT_LT(worst, 1e3 * nudge + 1e-6) << "nudge " << nudge;
     }
 }
 

@@ -39,6 +39,26 @@ OwnedProblem duplicated_rows() {
     return p;
 }
 
+OwnedProblem opposed_friction_pair() {
+    // body (vx, vy, omega), mass 1, inertia 1/6; contacts at (-+0.5, -0.5) with normal +y
+    const double J[4][3] = {{0, 1, -0.5}, {1, 0, 0.5}, {0, 1, 0.5}, {1, 0, 0.5}};
+    const double inv_mass[3] = {1, 1, 6};
+    const double cfm = 2e-9;  // relative to A_ii ~ 2.5
+    OwnedProblem p = OwnedProblem::zeros("opposed_friction_pair", 4);
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            double a = i == j ? cfm : 0;
+            for (int k = 0; k < 3; ++k) a += J[i][k] * inv_mass[k] * J[j][k];
+            p.a(i, j) = a;
+        }
+    const double gravity_step = 9.81 / 60;  // b_n = -J v_free: gravity pulls the box into the ground
+    p.b = {gravity_step, 0, gravity_step, 0};
+    p.lo = {0, -0.5, 0, -0.5};
+    p.hi = {kInf, 0.5, kInf, 0.5};
+    p.findex = {-1, 0, -1, 2};
+    return p;
+}
+
 }  // namespace ode_bpp::problems
 
 namespace ode_bpp::problems {

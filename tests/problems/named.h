@@ -18,4 +18,12 @@ OwnedProblem block_pivoting_cycle();
 /// CFM, as nearly redundant contacts produce in ODE), so A is singular positive semidefinite.
 OwnedProblem duplicated_rows();
 
+/// A 2-D box resting on two contacts (normal and friction row each, mu = 0.5, findex), A = J M^-1
+/// J^T + cfm I with cfm = 1e-9 relative to its diagonal. The two friction rows act on the same
+/// degree of freedom, so equal and opposite friction impulses are an internal force that only
+/// cfm sees: with both friction rows at opposite bounds, their multipliers have the wrong sign by
+/// about cfm |x|, within the 1e-9 classification tolerance, though the exact friction is 0.
+/// Rows: 0 normal, 1 its friction, 2 normal, 3 its friction.
+OwnedProblem opposed_friction_pair();
+
 }  // namespace ode_bpp::problems

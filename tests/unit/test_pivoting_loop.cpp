@@ -216,5 +216,56 @@ TEST(PivotingLoop, DirectCallLeavesTheFinalIndexSetAndCountsSteps) {
     EXPECT_LT(max_abs_diff(x, *expected), 1e-8);
 }
 
+
+// The polish (pivot_loop.cpp): a tight set whose multipliers have the wrong sign within the
+// classification tolerance is not kept when freeing those rows converges as well.
+TEST(PivotingPolish, TheToleranceAloneKeepsOpposedFrictionAtItsBoundsAndThePolishFreesIt) {
+    const auto owned = problems::opposed_friction_pair();
+    const pivoting::test::DriverLcp driver(owned.view());  // friction bounds fixed at +-mu
+    const pivoting::BoxedLcp& lcp = driver.lcp;
+    auto solver = pivoting::make_dense_refactor_solver(driver.A);
+    ASSERT_TRUE(solver->prepare(0));
+    const std::vector<RowState> opposed = {RowState::Free, RowState::AtHi, RowState::Free, RowState::AtLo};
+    for (bool polish : {false, true}) {
+        pivoting::PivotSettings settings;
+        settings.polish = polish;
+        std::vector<RowState> states = opposed;
+        std::vector<double> x;
+        pivoting::PivotCounters counters;
+        ASSERT_EQ(pivoting::pivot_fixed_bounds(lcp, *solver, settings, states, x, counters),
+                  pivoting::LoopOutcome::Converged)
+            << "polish " << polish;
+        if (!polish) {
+            // the premise: 1e-9 relative tolerance accepts the internal force +-mu
+            EXPECT_EQ(states, opposed);
+            EXPECT_EQ(counters.pivots, 1);
+        } else {
+            EXPECT_EQ(states[1], RowState::Free);
+            EXPECT_EQ(states[3], RowState::Free);
+            EXPECT_LT(std::abs(x[1]) + std::abs(x[3]), 1e-6 * lcp.hi[1]);
+            EXPECT_EQ(counters.pivots, 2);
+        }
+    }
+}
+
+TEST_P(PivotingEnumeration, AWarmStartWithOpposedFrictionAtItsBoundsEndsWithTheColdAnswer) {
+    const auto owned = problems::opposed_friction_pair();
+    std::vector<double> cold, warm;
+    const Result c = run(owned, GetParam(), cold);
+    ASSERT_EQ(c.status, Status::Converged) << c.message;
+    Options o;
+    o.warm_start = {RowState::Free, RowState::AtHi, RowState::Free, RowState::AtLo};
+    const Result r = run(owned, GetParam(), warm, o);
+    ASSERT_EQ(r.status, Status::Converged) << r.message;
+    const double bound = 0.5 * cold[0];  // mu x_normal
+    ASSERT_GT(bound, 0.01);
+    EXPECT_LT(std::abs(cold[1]) + std::abs(cold[3]), 1e-6 * bound);  // 0 up to rounding / cfm
+    // without the polish the friction stays at -+mu x_normal
+    EXPECT_LT(std::abs(warm[1]) + std::abs(warm[3]), 1e-6 * bound);
+    EXPECT_LT(max_abs_diff(warm, cold), 1e-6 * inf_norm(cold));
+    EXPECT_EQ(r.states[1], RowState::Free);
+    EXPECT_EQ(r.states[3], RowState::Free);
+}
+
 }  // namespace
 }  // namespace ode_bpp

@@ -40,6 +40,9 @@ struct Workspace {
     std::vector<int> linked;  ///< linked friction rows of the current step
     std::vector<std::uint64_t> visited_hash;  ///< index sets entered by block steps (stall_after > 0)
     std::vector<RowState> visited;            ///< the same sets, n entries each
+    std::vector<RowState> trial_states;       ///< the index set a polish round starts from
+    std::vector<RowState> kept_states;        ///< the converged answer while a polish tries another
+    std::vector<double> kept_x, kept_w, kept_lo, kept_hi;
 };
 
 [[gnu::noinline]] Workspace& thread_workspace() {
@@ -58,6 +61,74 @@ public:
 
     LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
         normalize(states);
+        const LoopOutcome outcome = pivot(states, x, settings_.max_pivots);
+        if (outcome == LoopOutcome::Converged && settings_.polish && lcp_.shift == 0)
+            polish(states, x, settings_.max_pivots - steps_taken_);
+        return outcome;
+    }
+
+private:
+    /// Polish rounds after convergence, and the pivot steps each may take (within the budget).
+    static constexpr int kPolishRounds = 2;
+    static constexpr int kPolishSteps = 6;
+
+    /// The classification tolerance lets a tight row keep a multiplier of the wrong sign (w_i > 0
+    /// at hi, w_i < 0 at lo) up to tol * (|A||x| + |b|)_i. Where A is nearly singular (CFM 1e-10,
+    /// four contacts per face) such a set can be an answer to that tolerance far from the exact
+    /// one: box stacks warm-started into pairs of friction rows at opposite bounds (+-mu x_n,
+    /// 1e7 times the exact friction) whose w sat at 0.5-0.9 tol and pushed the contacts along
+    /// their sliding direction; over steps that pumped energy into the stack until it slid by
+    /// centimetres. Rows wrong beyond the factor's accuracy are freed and the loop resumes from
+    /// there; its new answer is kept only if it converges, else the first one stands.
+    void polish(std::vector<RowState>& states, std::vector<double>& x, int budget) {
+        for (int round = 0; round < kPolishRounds && budget > 0; ++round) {
+            std::vector<RowState>& trial = ws_.trial_states;
+            trial = states;
+            if (!free_wrong_sign_rows(trial)) return;
+            keep(states, x);
+            const LoopOutcome outcome = pivot(trial, x, std::min(kPolishSteps, budget));
+            budget -= steps_taken_;
+            if (outcome != LoopOutcome::Converged) {
+                restore_kept(states, x);
+                return;
+            }
+            states.swap(trial);
+        }
+    }
+
+    /// Frees the tight rows whose w has the wrong sign beyond accuracy_limit(); true if any.
+    bool free_wrong_sign_rows(std::vector<RowState>& states) const {
+        const double limit = accuracy_limit();
+        bool any = false;
+        for (int i = 0; i < n_; ++i) {
+            if (pinned(i)) continue;
+            const double wrong = states[i] == RowState::AtHi ? w_[i] : states[i] == RowState::AtLo ? -w_[i] : 0.0;
+            if (wrong > limit * scale_[i]) {
+                states[i] = RowState::Free;
+                any = true;
+            }
+        }
+        return any;
+    }
+
+    void keep(const std::vector<RowState>& states, const std::vector<double>& x) {
+        ws_.kept_states = states;
+        ws_.kept_x = x;
+        ws_.kept_w = w_;
+        ws_.kept_lo = lo_;
+        ws_.kept_hi = hi_;
+    }
+
+    void restore_kept(std::vector<RowState>& states, std::vector<double>& x) {
+        states = ws_.kept_states;
+        x = ws_.kept_x;
+        w_ = ws_.kept_w;
+        lo_ = ws_.kept_lo;
+        hi_ = ws_.kept_hi;
+    }
+
+    /// The pivoting loop proper, at most max_steps solves of Eq. 6 from `states`.
+    LoopOutcome pivot(std::vector<RowState>& states, std::vector<double>& x, int max_steps) {
         int least_count = n_ + 1;        // Júdice-Pires: fewest infeasible rows seen so far
         int block_steps_left = settings_.murty_after;
         bool in_murty = false;
@@ -65,11 +136,13 @@ public:
         best_count_ = n_ + 1;
         visited_hash_.clear();
         visited_.clear();
-        for (int step = 0; step < settings_.max_pivots; ++step) {
+        steps_taken_ = 0;
+        for (int step = 0; step < max_steps; ++step) {
             if (settings_.stall_after > 0 && !in_murty && revisits(states)) {
                 restore_best(states, x);
                 return LoopOutcome::Stalled;
             }
+            ++steps_taken_;
             if (!solve_step(states, x)) return LoopOutcome::Breakdown;
             const Infeasibility& inf = classify(states, x);
             remember_if_best(inf, states, x);
@@ -105,7 +178,6 @@ public:
         return LoopOutcome::MaxIterations;
     }
 
-private:
     /// Rows that must be free are free; pinned rows (lo == hi) are tight; a tight state at an
     /// infinite bound cannot hold and starts free, as does anything that is not a RowState.
     void normalize(std::vector<RowState>& states) const {
@@ -340,6 +412,7 @@ private:
     Workspace& ws_ = thread_workspace();
     std::vector<char>& tight_ = ws_.tight;
     std::vector<double>&Ax_ = ws_.Ax, &w_ = ws_.w, &scale_ = ws_.scale, &x_free_ = ws_.x_free, &rhs_x_ = ws_.rhs_x;
+    int steps_taken_ = 0;  ///< solves of Eq. 6 made by the latest pivot()
     int best_count_ = 0;
     double best_violation_ = std::numeric_limits<double>::infinity();
     std::vector<RowState>& best_states_ = ws_.best_states;

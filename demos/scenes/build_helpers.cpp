@@ -171,11 +171,13 @@ dJointID add_fixed(SceneWorld& w, dBodyID a, dBodyID b) {
 void drive_hinge(dJointID hinge, double velocity, double max_force) {
     dJointSetHingeParam(hinge, dParamVel, velocity);
     dJointSetHingeParam(hinge, dParamFMax, max_force);
+    dJointSetHingeParam(hinge, dParamCFM, kDriveCfm);
 }
 
 void drive_slider(dJointID slider, double velocity, double max_force) {
     dJointSetSliderParam(slider, dParamVel, velocity);
     dJointSetSliderParam(slider, dParamFMax, max_force);
+    dJointSetSliderParam(slider, dParamCFM, kDriveCfm);
 }
 
 void limit_hinge(dJointID hinge, double lo, double hi) {

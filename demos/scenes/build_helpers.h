@@ -73,7 +73,12 @@ dJointID add_slider(SceneWorld& w, dBodyID a, dBodyID b, Vec3 axis);
 dJointID add_fixed(SceneWorld& w, dBodyID a, dBodyID b);
 
 /// Velocity motors: the joint drives its coordinate at `velocity` [rad/s or m/s] with at most
-/// `max_force` [Nm or N] (one boxed row of the MLCP, |impulse| <= max_force * h).
+/// `max_force` [Nm or N] (one boxed row of the MLCP, |impulse| <= max_force * h). The motor row's
+/// CFM is kDriveCfm whatever the world's: the paper's compliance is that of the joints and
+/// contacts; a drive with CFM = c/h is a damper that yields CFM x its load per step (the crane's
+/// luff drive, ~6.5e5 Nm at CFM 6e-7 (c = 1e-8): 0.4 rad/s, so the boom sank and the pipe
+/// stayed on the ground with either solver).
+constexpr double kDriveCfm = 1e-10;  ///< ODE's default CFM: a drive as stiff as ODE makes it
 void drive_hinge(dJointID hinge, double velocity, double max_force);
 void drive_slider(dJointID slider, double velocity, double max_force);
 /// Stops on a hinge or slider coordinate [rad or m] (a unilateral row when one is reached).

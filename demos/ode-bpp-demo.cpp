@@ -203,10 +203,7 @@ void copy_before(const dMLCP& p, IslandRecord& r) {
     const auto m = static_cast<size_t>(p.m);
     r.m = p.m;
     r.nub = p.nub;
-    r.A.assign(m * m, 0.0);
-    for (size_t i = 0; i < m; ++i) {
-        for (size_t j = 0; j <= i; ++j) r.A[i * m + j] = p.A[i * static_cast<size_t>(p.skip) + j];
-    }
+    ode_bpp::island_matrix_lower(p, r.A);
     r.b.resize(m), r.lo.resize(m), r.hi.resize(m), r.findex.resize(m);
     for (size_t i = 0; i < m; ++i) {
         r.b[i] = p.pairsbx[2 * i];
@@ -493,11 +490,12 @@ std::string cond_text(double c) {
 
 void print_summary(const RunResult& r) {
     std::printf("%s [%s]: %ld steps (%.1f s wall), islands/step <= %d, max rows %d, "
-                "solve median %.3f ms max %.3f ms, step median %.3f ms, pivots %ld, fallbacks %d, "
-                "failures %d, tight <= %.1f %%, worst residual %.1e (scaled %.1e), joint error <= %.1e m\n",
+                "solve median %.3f ms max %.3f ms, step median %.3f ms, pivots %ld, fallbacks %ld, "
+                "failures %ld, tight <= %.1f %%, worst residual %.1e (scaled %.1e), joint error <= %.1e m\n",
                 r.scene.c_str(), r.solver.c_str(), r.steps, r.wall_seconds, r.max_islands, r.max_rows,
                 percentile(r.solve_ms, 0.5), percentile(r.solve_ms, 1.0), percentile(r.step_ms, 0.5),
-                r.totals.pivots, r.totals.fallbacks, r.totals.failures, 100 * r.max_tight_fraction,
+                static_cast<long>(r.totals.pivots), static_cast<long>(r.totals.fallbacks),
+                static_cast<long>(r.totals.failures), 100 * r.max_tight_fraction,
                 r.worst_relative_residual, r.worst_scaled_residual, r.max_joint_error);
     std::printf("  success: %s (%s)\n", r.success.ok ? "yes" : "NO", r.success.detail.c_str());
     std::printf("  Table 2: measured mass ratio %s, rows %d, cond %s | paper %s, %d, %s\n",
@@ -511,9 +509,10 @@ void print_comparison(const std::vector<RunResult>& runs) {
     std::printf("%-10s %-10s %10s %10s %9s %10s %9s %9s %8s %12s\n", "scene", "solver", "median ms",
                 "max ms", "max rows", "pivots", "fallbacks", "failures", "success", "worst resid");
     for (const RunResult& r : runs) {
-        std::printf("%-10s %-10s %10.3f %10.3f %9d %10ld %9d %9d %8s %12.1e\n", r.scene.c_str(),
+        std::printf("%-10s %-10s %10.3f %10.3f %9d %10ld %9ld %9ld %8s %12.1e\n", r.scene.c_str(),
                     r.solver.c_str(), percentile(r.solve_ms, 0.5), percentile(r.solve_ms, 1.0),
-                    r.max_rows, r.totals.pivots, r.totals.fallbacks, r.totals.failures,
+                    r.max_rows, static_cast<long>(r.totals.pivots), static_cast<long>(r.totals.fallbacks),
+                    static_cast<long>(r.totals.failures),
                     r.success.ok ? "yes" : "NO", r.worst_relative_residual);
     }
 }

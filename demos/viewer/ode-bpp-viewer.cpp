@@ -353,7 +353,7 @@ private:
         const double mean_ms = solved && total.steps > 0 ? 1e3 * total.seconds / double(total.steps) : 0.0;
         std::snprintf(line, sizeof line, "%s | solver %s | t = %.2f s | solve %.3f ms (mean %.3f ms, %d rows)%s%s",
                       scene_->name().c_str(), world_->params().solver.c_str(), world_->time(),
-                      solved ? 1e3 * last.seconds : 0.0, mean_ms, solved ? last.rows : 0,
+                      solved ? 1e3 * last.seconds : 0.0, mean_ms, solved ? static_cast<int>(last.rows) : 0,
                       paused_ ? " | paused" : "", step_failed_ ? " | STEP FAILED" : "");
         return line;
     }

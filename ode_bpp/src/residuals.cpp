@@ -41,7 +41,7 @@ bool is_free(const Problem& p, ConstStrided x, const std::vector<RowState>* stat
 /// since its bound mu_i |x_n| is known only to that scale (the solver's certificate,
 /// friction_consistent in bpp_driver.cpp, uses the same). Without it a friction row whose own
 /// scale is rounding (x ~ 1e-13 beside a resting normal) read 0.5 on answers accurate to 1e-12.
-double row_scale(const Problem& p, const pivoting::SymmetricRows& A, const std::vector<double>& scale, int i) {
+double row_scale(const Problem& p, const linalg::SymmetricRows& A, const std::vector<double>& scale, int i) {
     double s = scale[i] / A.diag(i);
     if (i >= p.nub && p.findex != nullptr && p.findex[i] >= 0 && std::isfinite(p.hi[i])) {
         const int n = p.findex[i];
@@ -62,7 +62,7 @@ std::pair<double, double> effective_bounds(const Problem& p, ConstStrided x, int
     return {p.lo[i], p.hi[i]};
 }
 
-void residual_vectors(const Problem& p, const pivoting::SymmetricRows& A, ConstStrided x, std::vector<double>& w,
+void residual_vectors(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x, std::vector<double>& w,
                       std::vector<double>& scale) {
     w.assign(static_cast<std::size_t>(p.n), 0.0);
     scale.assign(static_cast<std::size_t>(p.n), 0.0);
@@ -80,14 +80,14 @@ void residual_vectors(const Problem& p, const pivoting::SymmetricRows& A, ConstS
 }
 
 void residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
-    residual_vectors(p, pivoting::SymmetricRows(p, {}), x, w, scale);
+    residual_vectors(p, linalg::SymmetricRows(p, {}), x, w, scale);
 }
 
 Residuals compute_residuals(const Problem& p, ConstStrided x, const std::vector<RowState>* states) {
-    return compute_residuals(p, pivoting::SymmetricRows(p, {}), x, states);
+    return compute_residuals(p, linalg::SymmetricRows(p, {}), x, states);
 }
 
-Residuals compute_residuals(const Problem& p, const pivoting::SymmetricRows& A, ConstStrided x,
+Residuals compute_residuals(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x,
                             const std::vector<RowState>* states) {
     ResidualScratch& scratch = thread_scratch();  // capacity kept between solves
     std::vector<double>&w = scratch.w, &scale = scratch.scale;

@@ -5,16 +5,16 @@
 #include <vector>
 
 #include "ode_bpp/residuals.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 
 namespace ode_bpp {
 
-/// As compute_residuals(problem, x, states); A: SymmetricRows(problem, {}) (original order).
-Residuals compute_residuals(const Problem& problem, const pivoting::SymmetricRows& A, ConstStrided x,
+/// As compute_residuals(problem, x, states); A: linalg::SymmetricRows(problem, {}) (original order).
+Residuals compute_residuals(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x,
                             const std::vector<RowState>* states);
 
-/// As residual_vectors(problem, x, w, scale), from A = SymmetricRows(problem, {}).
-void residual_vectors(const Problem& problem, const pivoting::SymmetricRows& A, ConstStrided x, std::vector<double>& w,
+/// As residual_vectors(problem, x, w, scale), from A = linalg::SymmetricRows(problem, {}).
+void residual_vectors(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x, std::vector<double>& w,
                       std::vector<double>& scale);
 
 }  // namespace ode_bpp

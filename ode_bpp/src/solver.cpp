@@ -25,7 +25,7 @@
 #include "ode_bpp/solver.h"
 #include "ode_bpp/validation.h"
 #include "pivoting/bpp_driver.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 #include "residuals.h"
 
 namespace ode_bpp {
@@ -64,9 +64,9 @@ int count_tight(const std::vector<RowState>& states) {
     return static_cast<int>(std::count_if(states.begin(), states.end(), [](RowState s) { return s != RowState::Free; }));
 }
 
-Result run_dantzig(const Problem& p, std::vector<double>& x) {
+Result run_dantzig(const Problem& p, const linalg::SymmetricRows& A, std::vector<double>& x) {
     Result r;
-    if (!baselines::solve_dantzig(p, x)) {
+    if (!baselines::solve_dantzig(p, A, x)) {
         r.status = Status::NotSpd;
         r.message = "ODE's Dantzig refused the problem (no memory)";
         return r;
@@ -77,7 +77,7 @@ Result run_dantzig(const Problem& p, std::vector<double>& x) {
     return r;
 }
 
-Result run_pgs(const Problem& p, const pivoting::SymmetricRows& A, const Options& o, std::vector<double>& x) {
+Result run_pgs(const Problem& p, const linalg::SymmetricRows& A, const Options& o, std::vector<double>& x) {
     Result r;
     baselines::solve_pgs(p, A, std::max(0, o.pgs_iterations), x);
     r.pivots = std::max(0, o.pgs_iterations);  // sweeps: PGS has no pivot steps
@@ -89,20 +89,21 @@ Result run_pgs(const Problem& p, const pivoting::SymmetricRows& A, const Options
     return r;
 }
 
-Result dispatch(const Problem& p, const pivoting::SymmetricRows& A, const Options& o, std::vector<double>& x) {
+Result dispatch(const Problem& p, const linalg::SymmetricRows& A, const Options& o, std::vector<double>& x) {
     if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, x);
-    if (o.method == Method::Dantzig) return run_dantzig(p, x);
+    if (o.method == Method::Dantzig) return run_dantzig(p, A, x);
     return run_pgs(p, A, o, x);
 }
 
 /// Steps 3-4 of the chain above.
-void apply_fallbacks(const Problem& p, const Options& o, Result& r, std::vector<double>& x) {
+void apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Options& o, Result& r,
+                     std::vector<double>& x) {
     const bool failed = r.status == Status::NotSpd || !all_finite(x);
     if (!failed) return;
     std::string reason = r.status == Status::NotSpd ? r.message : "the answer was not finite";
     if (o.dantzig_fallback && o.method != Method::Dantzig) {
         std::vector<double> xd;
-        if (baselines::solve_dantzig(p, xd) && all_finite(xd)) {
+        if (baselines::solve_dantzig(p, A, xd) && all_finite(xd)) {
             x = std::move(xd);
             r.status = Status::FallbackUsed;
             r.fallback = r.fallback.empty() ? "dantzig" : r.fallback + "+dantzig";
@@ -120,7 +121,7 @@ void apply_fallbacks(const Problem& p, const Options& o, Result& r, std::vector<
     r.tight = 0;
 }
 
-void fill_residuals(const Problem& p, const pivoting::SymmetricRows& A, Result& r, const std::vector<double>& x) {
+void fill_residuals(const Problem& p, const linalg::SymmetricRows& A, Result& r, const std::vector<double>& x) {
     const Residuals res = compute_residuals(p, A, ConstStrided{x.data(), 1}, r.states.empty() ? nullptr : &r.states);
     r.natural_residual = res.natural;
     r.relative_natural_residual = res.relative_natural;
@@ -131,9 +132,26 @@ void fill_residuals(const Problem& p, const pivoting::SymmetricRows& A, Result& 
 
 // noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
 // library) at every use inside a loop instead of keeping it (7,000 calls per forklift solve)
-[[gnu::noinline]] pivoting::SymmetricRows& thread_rows() {
-    thread_local pivoting::SymmetricRows rows;
+[[gnu::noinline]] linalg::SymmetricRows& thread_rows() {
+    thread_local linalg::SymmetricRows rows;
     return rows;
+}
+
+/// A as compressed rows in original order: the caller's sparse A as it is, or the dense lower
+/// triangle read once (the only O(n^2) pass of a dense problem) into storage kept per thread.
+const linalg::SymmetricRows& rows_of(const Problem& problem) {
+    if (problem.sparse != nullptr) return *problem.sparse;
+    linalg::SymmetricRows& rows = thread_rows();
+    rows.assign(problem, {});
+    return rows;
+}
+
+ValidationResult validate_call(const Problem& problem, const Options& options) {
+    ValidationResult v = validate_structure(problem);
+    if (v.valid) v = validate_warm_start(problem, options.warm_start);
+    if (v.valid && !(options.tolerance >= 0 && std::isfinite(options.tolerance)))
+        v = {false, "tolerance must be finite and >= 0"};
+    return v;
 }
 
 Result invalid_input(const Problem& p, Strided x, std::string message) {
@@ -198,25 +216,21 @@ Result solve(const Problem& problem, const Options& options, Strided x) {
         r.friction = options.friction;
         return r;
     }
-    ValidationResult v = validate(problem);
-    if (v.valid) v = validate_warm_start(problem, options.warm_start);
-    if (v.valid && !(options.tolerance >= 0 && std::isfinite(options.tolerance)))
-        v = {false, "tolerance must be finite and >= 0"};
+    ValidationResult v = validate_call(problem, options);
+    const linalg::SymmetricRows* A = v.valid ? &rows_of(problem) : nullptr;
+    if (v.valid) v = validate_matrix(*A);
     if (!v.valid) {
         Result r = invalid_input(problem, problem.n > 0 ? x : Strided{}, v.message);
         r.method = options.method;
         r.friction = options.friction;
         return r;
     }
-    // the one O(n^2) pass after validation, into storage kept per thread (small islands)
-    pivoting::SymmetricRows& A = thread_rows();
-    A.assign(problem, {});
     std::vector<double> answer;
-    Result r = dispatch(problem, A, options, answer);
+    Result r = dispatch(problem, *A, options, answer);
     r.method = options.method;
     r.friction = options.friction;
-    apply_fallbacks(problem, options, r, answer);
-    fill_residuals(problem, A, r, answer);
+    apply_fallbacks(problem, *A, options, r, answer);
+    fill_residuals(problem, *A, r, answer);
     if (!is_bpp(options.method)) r.factor_error = std::numeric_limits<double>::quiet_NaN();
     if (r.status != Status::Converged && r.message.empty()) r.message = to_string(r.status);
     for (int i = 0; i < problem.n; ++i) x[i] = answer[i];

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "linalg/symmetric_rows.h"
+
 namespace ode_bpp {
 
 namespace {
@@ -23,8 +25,13 @@ std::string describe(const char* name, double value) {
 
 ValidationResult check_sizes(const Problem& p) {
     if (p.n <= 0) return invalid("n = " + std::to_string(p.n) + ": the problem must have at least one row");
-    if (p.A == nullptr) return invalid("A is null");
-    if (p.lda < p.n) return invalid("lda = " + std::to_string(p.lda) + " < n = " + std::to_string(p.n));
+    if (p.sparse != nullptr) {
+        if (p.sparse->n() != p.n)
+            return invalid("the sparse A has " + std::to_string(p.sparse->n()) + " rows, n = " + std::to_string(p.n));
+    } else {
+        if (p.A == nullptr) return invalid("A is null");
+        if (p.lda < p.n) return invalid("lda = " + std::to_string(p.lda) + " < n = " + std::to_string(p.n));
+    }
     if (p.b.data == nullptr || p.lo.data == nullptr || p.hi.data == nullptr) return invalid("b, lo or hi is null");
     if (p.b.stride < 1 || p.lo.stride < 1 || p.hi.stride < 1) return invalid("b, lo or hi has a stride < 1");
     if (p.nub < 0 || p.nub > p.n)
@@ -32,15 +39,28 @@ ValidationResult check_sizes(const Problem& p) {
     return {};
 }
 
-ValidationResult check_matrix(const Problem& p) {
+ValidationResult not_finite(int i, int j) {
+    return invalid_row(i, "A(" + std::to_string(i) + "," + std::to_string(j) + ") is not finite");
+}
+
+ValidationResult check_diagonal(int i, double a_ii) {
+    if (!std::isfinite(a_ii)) return not_finite(i, i);
+    if (!(a_ii > 0)) return invalid_row(i, describe("diagonal A(i,i)", a_ii) + " is not positive");
+    return {};
+}
+
+ValidationResult check_dense_matrix(const Problem& p) {
     for (int i = 0; i < p.n; ++i) {
         const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
-        for (int j = 0; j <= i; ++j)
-            if (!std::isfinite(row[j]))
-                return invalid_row(i, "A(" + std::to_string(i) + "," + std::to_string(j) + ") is not finite");
-        if (!(row[i] > 0)) return invalid_row(i, describe("diagonal A(i,i)", row[i]) + " is not positive");
+        for (int j = 0; j < i; ++j)
+            if (!std::isfinite(row[j])) return not_finite(i, j);
+        if (ValidationResult r = check_diagonal(i, row[i]); !r.valid) return r;
     }
     return {};
+}
+
+ValidationResult check_matrix(const Problem& p) {
+    return p.sparse != nullptr ? validate_matrix(*p.sparse) : check_dense_matrix(p);
 }
 
 bool is_friction_row(const Problem& p, int i) { return p.findex != nullptr && p.findex[i] >= 0; }
@@ -92,12 +112,31 @@ ValidationResult check_blocks(const Problem& p) {
 
 }  // namespace
 
-ValidationResult validate(const Problem& problem) {
-    for (auto check : {check_sizes, check_findex, check_bounds, check_matrix, check_blocks}) {
+ValidationResult validate_structure(const Problem& problem) {
+    for (auto check : {check_sizes, check_findex, check_bounds, check_blocks}) {
         ValidationResult r = check(problem);
         if (!r.valid) return r;
     }
     return {};
+}
+
+// Row by row, the lower entries before the diagonal: the defect a dense scan would meet first.
+ValidationResult validate_matrix(const linalg::SymmetricRows& A) {
+    for (int i = 0; i < A.n(); ++i) {
+        for (int k = A.row_begin(i); k < A.row_end(i) && A.col(k) < i; ++k)
+            if (!std::isfinite(A.val(k))) return not_finite(i, A.col(k));
+        if (ValidationResult r = check_diagonal(i, A.diag(i)); !r.valid) return r;
+    }
+    return {};
+}
+
+ValidationResult validate(const Problem& problem) {
+    ValidationResult r = check_sizes(problem);
+    if (r.valid) r = check_findex(problem);
+    if (r.valid) r = check_bounds(problem);
+    if (r.valid) r = check_matrix(problem);
+    if (r.valid) r = check_blocks(problem);
+    return r;
 }
 
 ValidationResult validate_warm_start(const Problem& problem, const std::vector<RowState>& warm_start) {

@@ -112,7 +112,7 @@ TEST(OdeHook, StatisticsNameTheSolverAndCountRows) {
     for (const char* solver : {"dantzig", "bpp"}) {
         SmallScene s(solver);
         for (int i = 0; i < 30; ++i) s.step();
-        dMLCPStepStats last, total;
+        dMLCPStepStats last{}, total{};
         ASSERT_EQ(dWorldGetMLCPStats(s.world, &last, &total), 1);
         EXPECT_STREQ(last.solver, solver);
         EXPECT_EQ(total.steps, 30u);
@@ -170,6 +170,7 @@ TEST(OdeHook, BppAndDantzigAgreeOnTheTrajectory) {
 struct ObserverLog {
     int before = 0, after = 0, rows = 0;
     bool structure_ok = true;
+    bool sparse = true;
 };
 
 void observe(const dMLCP* p, const dMLCPIslandStats* stats, void* data) {
@@ -188,7 +189,12 @@ void observe(const dMLCP* p, const dMLCPIslandStats* stats, void* data) {
         next += p->joints[j].m;
     }
     log->structure_ok &= next == p->m && p->skip >= p->m;
-    for (int i = 0; i < p->m; ++i) log->structure_ok &= p->A[i * p->skip + i] > 0;
+    // "bpp" takes the sparse form: no dense A, but J, J M^-1 and the CFM, whose diagonal
+    // A_ii = J_i M^-1 J_i^T + cfm_i must be positive (ode_bpp::island_matrix_lower builds it)
+    log->sparse &= p->A == nullptr && p->J != nullptr && p->JinvM != nullptr && p->cfm != nullptr;
+    std::vector<double> A;
+    ode_bpp::island_matrix_lower(*p, A);
+    for (int i = 0; i < p->m; ++i) log->structure_ok &= A[static_cast<std::size_t>(i) * p->m + i] > 0;
 }
 
 TEST(OdeHook, ObserverSeesIntactProblemAndStructure) {
@@ -200,7 +206,8 @@ TEST(OdeHook, ObserverSeesIntactProblemAndStructure) {
     EXPECT_GT(log.before, 0);
     EXPECT_EQ(log.before, log.after);
     EXPECT_TRUE(log.structure_ok);
-    dMLCPStepStats total;
+    EXPECT_TRUE(log.sparse) << "bpp registers in the sparse form: every island must come without a dense A";
+    dMLCPStepStats total{};
     dWorldGetMLCPStats(s.world, nullptr, &total);
     EXPECT_EQ(log.rows, total.rows);
 }
@@ -221,7 +228,7 @@ TEST(OdeHook, FailedSolverFallsBackToDantzigAndTheWorldStaysSane) {
     for (const char* name : {"test-failing", "test-nan"}) {
         SmallScene s(name);
         for (int i = 0; i < 60; ++i) s.step();
-        dMLCPStepStats total;
+        dMLCPStepStats total{};
         dWorldGetMLCPStats(s.world, nullptr, &total);
         EXPECT_EQ(total.failures, total.islands) << name;
         EXPECT_EQ(total.fallbacks, total.islands) << name;

@@ -42,11 +42,12 @@ int main(int argc, char** argv) {
         dWorldStep(world, 1.0 / 60.0);
         dJointGroupEmpty(contacts);
     }
-    dMLCPStepStats total;
+    dMLCPStepStats total{};
     dWorldGetMLCPStats(world, nullptr, &total);
     const double z = dBodyGetPosition(box)[2];
-    std::printf("solver=%s steps=%lu islands=%d pivots=%ld failures=%d z=%.6f\n", total.solver, total.steps,
-                total.islands, total.pivots, total.failures, z);
+    std::printf("solver=%s steps=%lld islands=%lld pivots=%lld failures=%lld z=%.6f\n", total.solver,
+                static_cast<long long>(total.steps), static_cast<long long>(total.islands),
+                static_cast<long long>(total.pivots), static_cast<long long>(total.failures), z);
     dJointGroupDestroy(contacts);
     dSpaceDestroy(space);
     dWorldDestroy(world);

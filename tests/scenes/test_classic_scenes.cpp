@@ -84,8 +84,8 @@ void expect_scene_succeeds(const std::string& name, const std::string& solver) {
     if (dWorldGetMLCPStats(w.world(), nullptr, &total)) {
         ::testing::Test::RecordProperty("islands_answered_by_dantzig_fallback", total.failures);
         if (solver != "dantzig" && total.failures > 0)
-            std::printf("note: %s with %s: %d island solves fell back to ODE's Dantzig\n", name.c_str(),
-                        solver.c_str(), total.failures);
+            std::printf("note: %s with %s: %ld island solves fell back to ODE's Dantzig\n", name.c_str(),
+                        solver.c_str(), static_cast<long>(total.failures));
     }
 }
 

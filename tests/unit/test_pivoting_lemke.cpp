@@ -12,7 +12,7 @@
 #include "ode_bpp/residuals.h"
 #include "pivoting/friction_lcp.h"
 #include "pivoting/lemke.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 #include "problems/generators.h"
 #include "test_pivoting_support.h"
 

@@ -11,7 +11,7 @@
 namespace ode_bpp::pivoting {
 namespace {
 
-std::ptrdiff_t envelope(const SymmetricRows& A, const std::vector<int>& perm) {
+std::ptrdiff_t envelope(const linalg::SymmetricRows& A, const std::vector<int>& perm) {
     return linalg::envelope_size(A.row_profile_under(perm));
 }
 
@@ -22,7 +22,7 @@ std::vector<int> order(const Problem& p, ordering::OrderingKind kind, const std:
 TEST(PivotingOrdering, PaperBaselinesKeepTheCallersOrder) {
     const auto owned = problems::chain_mlcp(20, 10);
     const Problem p = owned.view();
-    const SymmetricRows A(p, {});
+    const linalg::SymmetricRows A(p, {});
     for (Method m : {Method::BppChol, Method::BppDown}) {
         const std::vector<int> perm = choose_ordering(m, p, A, {});
         for (int i = 0; i < p.n; ++i) EXPECT_EQ(perm[i], i);
@@ -32,7 +32,7 @@ TEST(PivotingOrdering, PaperBaselinesKeepTheCallersOrder) {
 TEST(PivotingOrdering, SkylineVariantsShrinkTheEnvelopeOfAnIslandWithContactsLast) {
     const auto owned = problems::chain_mlcp(40, 20);
     const Problem p = owned.view();
-    const SymmetricRows A(p, {});
+    const linalg::SymmetricRows A(p, {});
     const std::vector<int> identity = choose_ordering(Method::BppChol, p, A, {});
     const std::vector<int> sky = choose_ordering(Method::BppSky, p, A, {});
     const std::vector<int> ours = choose_ordering(Method::Bpp, p, A, {});
@@ -48,7 +48,7 @@ TEST(PivotingOrdering, SkylineVariantsShrinkTheEnvelopeOfAnIslandWithContactsLas
 TEST(PivotingOrdering, WarmStartChoiceIsNeverPricedAboveTheCandidates) {
     const auto owned = problems::chain_mlcp(60, 30);
     const Problem p = owned.view();
-    const SymmetricRows A(p, {});
+    const linalg::SymmetricRows A(p, {});
     for (int every : {1, 3, 10}) {  // many to few tight friction rows
         std::vector<RowState> warm(p.n, RowState::Free);
         std::vector<char> tight(p.n, 0);
@@ -73,7 +73,7 @@ TEST(PivotingOrdering, ALongRowMovedLastIsPricedAsTheColumnsItMakesReachTheBotto
     // so moving one mid-chain contact row last multiplies the factor's cost; the price sees it
     const auto owned = problems::chain_mlcp(60, 30);
     const Problem p = owned.view();
-    const SymmetricRows A(p, {});
+    const linalg::SymmetricRows A(p, {});
     std::vector<RowState> warm(p.n, RowState::Free);
     std::vector<char> tight(p.n, 0);
     const int row = p.nub + 3 * 15 + 1;  // a friction row of a contact mid-chain

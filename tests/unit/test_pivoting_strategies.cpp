@@ -10,7 +10,7 @@
 #include "pivoting/free_solver.h"
 #include "pivoting/ordering_choice.h"
 #include "pivoting/strategies.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 #include "problems/generators.h"
 #include "problems/named.h"
 
@@ -22,17 +22,17 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 struct Permuted {
     problems::OwnedProblem owned;
-    SymmetricRows Ap;
+    linalg::SymmetricRows Ap;
 };
 
 Permuted permuted_for(Method m, problems::OwnedProblem owned) {
     const Problem p = owned.view();
-    const SymmetricRows A(p, {});
+    const linalg::SymmetricRows A(p, {});
     const std::vector<int> perm = choose_ordering(m, p, A, {});
     return {std::move(owned), A.permuted(perm)};
 }
 
-Eigen::MatrixXd dense(const SymmetricRows& A) {
+Eigen::MatrixXd dense(const linalg::SymmetricRows& A) {
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(A.n(), A.n());
     for (int i = 0; i < A.n(); ++i) {
         M(i, i) = A.diag(i);
@@ -126,7 +126,7 @@ TEST_P(PivotingStrategy, FactorErrorIsSmallWhereDefined) {
 
 TEST_P(PivotingStrategy, SingularMatrixBreaksDown) {
     const auto owned = problems::duplicated_rows();
-    const SymmetricRows A(owned.view(), {});
+    const linalg::SymmetricRows A(owned.view(), {});
     auto solver = make_free_solver(GetParam(), A);
     std::vector<char> none(3, 0);
     std::vector<double> x = {1, 1, 1};

@@ -6,14 +6,14 @@
 
 #include "ode_bpp/solver.h"
 #include "pivoting/boxed_lcp.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting::test {
 
 /// The driver's BoxedLcp of a problem in its own order (no permutation, fixed bounds as given),
 /// with its friction rows, their normals and mu listed for the friction LCP.
 struct DriverLcp {
-    SymmetricRows A;
+    linalg::SymmetricRows A;
     BoxedLcp lcp;
     std::vector<int> rows, normals;
     std::vector<double> mu;

@@ -32,12 +32,22 @@ struct Strided {
     double& operator[](int i) const { return data[static_cast<std::ptrdiff_t>(i) * stride]; }
 };
 
-/// One MLCP, as a view. A is n x n, row-major with row stride lda >= n; only the lower
-/// triangle (diagonal included) is read, as ODE fills only the lower block triangle.
+namespace linalg {
+class SymmetricRows;
+}
+
+/// One MLCP, as a view. A comes in one of two forms:
+///  - dense: n x n, row-major with row stride lda >= n; only the lower triangle (diagonal
+///    included) is read, as ODE fills only the lower block triangle;
+///  - sparse: `sparse` non-null (A and lda are then ignored), A's non-zeros as compressed
+///    symmetric rows in the original order (linalg/symmetric_rows.h), e.g. assembled from ODE's
+///    Jacobian by the world hook (ode/assemble.h). Validation, solve and residuals then cost
+///    O(non-zeros); the dense form is converted into this one in one pass.
 struct Problem {
     int n = 0;
     const double* A = nullptr;
     int lda = 0;
+    const linalg::SymmetricRows* sparse = nullptr;
     ConstStrided b, lo, hi;
     const int* findex = nullptr;   ///< n entries, -1 for none; may be null
     /// Leading rows that are unbounded whatever lo/hi say. A lower bound only: every row with

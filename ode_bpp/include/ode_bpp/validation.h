@@ -18,15 +18,22 @@ struct ValidationResult {
 
 /// Checks a problem against the contract of ODE's MLCP (ode/src/lcp.h) that every method relies on:
 ///  - n >= 1, A/b/lo/hi non-null, lda >= n, strides >= 1, 0 <= nub <= n;
-///  - A's lower triangle (diagonal included) finite, diagonal > 0;
+///  - A's lower triangle (diagonal included) finite, diagonal > 0 (a sparse A: n rows);
 ///  - b finite; lo, hi not NaN (+-inf allowed), lo <= hi, and lo <= 0 <= hi as ODE requires
 ///    (its Dantzig starts from x = 0, which must be feasible); a friction row's lo is ignored;
 ///  - findex (if given): -1 or in [0, n), never the row itself, never a friction row (a normal
 ///    cannot itself be a friction row), never a friction row inside the first nub rows, and the
 ///    friction coefficient hi_i = mu_i >= 0;
 ///  - block structure (if num_blocks > 0): block_row non-decreasing from 0 to n, bodies >= -1.
-/// Reads only; O(n^2) for A's lower triangle.
+/// Reads only; O(n^2) for a dense A's lower triangle, O(non-zeros) for a sparse A.
 ValidationResult validate(const Problem& problem);
+
+/// validate() without A's entries (sizes, bounds, findex, blocks). O(n).
+ValidationResult validate_structure(const Problem& problem);
+
+/// A's entries (lower triangle and diagonal): finite, diagonal > 0; the same first defect and
+/// message as validate() on the dense form. O(non-zeros).
+ValidationResult validate_matrix(const linalg::SymmetricRows& A);
 
 /// Checks that a warm start fits the problem: empty (no warm start) or exactly n entries.
 ValidationResult validate_warm_start(const Problem& problem, const std::vector<RowState>& warm_start);

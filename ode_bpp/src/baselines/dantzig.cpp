@@ -4,19 +4,20 @@
 
 #include <vector>
 
+#include "linalg/symmetric_rows.h"
+
 namespace ode_bpp::baselines {
 
-bool solve_dantzig(const Problem& p, std::vector<double>& x) {
+bool solve_dantzig(const Problem& p, const linalg::SymmetricRows& As, std::vector<double>& x) {
     static_assert(sizeof(dReal) == sizeof(double), "the patched ODE must be double precision");
     const int n = p.n;
     const int stride = dPAD(n);
     std::vector<double> A(static_cast<std::size_t>(n) * stride, 0.0);
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j <= i; ++j) {
-            const double a = p.A[static_cast<std::ptrdiff_t>(i) * p.lda + j];
-            A[static_cast<std::size_t>(i) * stride + j] = a;
-            A[static_cast<std::size_t>(j) * stride + i] = a;
-        }
+    for (int i = 0; i < n; ++i) {
+        double* row = A.data() + static_cast<std::size_t>(i) * stride;
+        row[i] = As.diag(i);
+        for (int k = As.row_begin(i); k < As.row_end(i); ++k) row[As.col(k)] = As.val(k);
+    }
     std::vector<double> b(n), lo(n), hi(n);
     std::vector<int> findex(n, -1);
     for (int i = 0; i < n; ++i) {

@@ -3,11 +3,11 @@
 #include <algorithm>
 
 #include "ode_bpp/residuals.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::baselines {
 
-void solve_pgs(const Problem& p, const pivoting::SymmetricRows& A, int sweeps, std::vector<double>& x) {
+void solve_pgs(const Problem& p, const linalg::SymmetricRows& A, int sweeps, std::vector<double>& x) {
     x.assign(static_cast<std::size_t>(p.n), 0.0);
     const ConstStrided xs{x.data(), 1};
     for (int sweep = 0; sweep < sweeps; ++sweep) {

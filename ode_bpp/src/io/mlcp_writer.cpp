@@ -9,6 +9,9 @@
 #include <ode/ode.h>
 
 #include "io/byte_codec.h"
+#include "linalg/symmetric_rows.h"
+#include "ode/assemble.h"
+#include "ode_bpp/ode.h"
 #include "io/mlcp_layout.h"
 #include "ode_bpp/io.h"
 
@@ -136,22 +139,28 @@ bool write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes
     return true;
 }
 
+/// The upper triangle of a row-major n x n array set from its lower triangle.
+void mirror_lower(std::vector<double>& A, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < i; ++j) A[j * n + i] = A[i * n + j];
+}
+
 void copy_matrix(const Problem& p, std::vector<double>* A) {
     const std::size_t n = static_cast<std::size_t>(p.n);
     A->assign(n * n, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (std::size_t j = 0; j <= i; ++j) {
-            const double a = p.A[i * static_cast<std::size_t>(p.lda) + j];
-            (*A)[i * n + j] = a;
-            (*A)[j * n + i] = a;
-        }
+    if (p.sparse != nullptr) {
+        p.sparse->to_dense_lower(A->data(), p.n);
+    } else {
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t j = 0; j <= i; ++j) (*A)[i * n + j] = p.A[i * static_cast<std::size_t>(p.lda) + j];
     }
+    mirror_lower(*A, n);
 }
 
 std::optional<std::string> check_problem_pointers(const Problem& p) {
     if (p.n < 0) return "n = " + std::to_string(p.n) + " is negative";
-    if (p.n > 0 && (!p.A || !p.b.data || !p.lo.data || !p.hi.data)) return "A, b, lo and hi must not be null";
-    if (p.n > 0 && p.lda < p.n) return "lda = " + std::to_string(p.lda) + " < n = " + std::to_string(p.n);
+    if (p.n > 0 && ((!p.A && !p.sparse) || !p.b.data || !p.lo.data || !p.hi.data)) return "A, b, lo and hi must not be null";
+    if (p.n > 0 && !p.sparse && p.lda < p.n) return "lda = " + std::to_string(p.lda) + " < n = " + std::to_string(p.n);
     if (p.num_blocks < 0) return "num_blocks = " + std::to_string(p.num_blocks) + " is negative";
     if (p.num_blocks > 0 && (!p.block_row || !p.block_body)) return "num_blocks > 0 but block_row or block_body is null";
     return std::nullopt;
@@ -220,16 +229,14 @@ std::optional<MlcpFile> copy_problem(const Problem& problem, const Metadata& met
 
 std::optional<MlcpFile> capture_from_ode(const dMLCP& p, const Metadata& meta, std::string* error) {
     try {
-        if (p.m < 0 || (p.m > 0 && (!p.A || !p.pairsbx || !p.pairslh)) || p.skip < p.m)
+        const bool has_matrix = p.A != nullptr || ode::has_sparse_form(p);
+        if (p.m < 0 || (p.m > 0 && (!has_matrix || !p.pairsbx || !p.pairslh)) || p.skip < p.m)
             return no_file(error, "ODE island: bad sizes or null arrays");
         MlcpFile f;
         f.n = p.m;
         f.nub = p.nub;
-        Problem view;
-        view.n = p.m;
-        view.A = p.A;
-        view.lda = p.skip;
-        copy_matrix(view, &f.A);
+        island_matrix_lower(p, f.A);
+        mirror_lower(f.A, static_cast<std::size_t>(p.m));
         for (int i = 0; i < p.m; ++i) {
             f.b.push_back(p.pairsbx[2 * i]);
             f.lo.push_back(p.pairslh[2 * i]);

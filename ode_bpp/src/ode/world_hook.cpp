@@ -2,7 +2,9 @@
 //
 // Index space: ODE's island row order (original) throughout; the solver permutes inside.
 // ODE's interleaved arrays are used in place: b = pairsbx[2i], x = pairsbx[2i+1],
-// lo = pairslh[2i], hi = pairslh[2i+1]; A is read in place (lower triangle, stride skip).
+// lo = pairslh[2i], hi = pairslh[2i+1]. The solvers register in the sparse form: ODE hands over
+// J, J M^-1 and the CFM and never forms its dense A; A is assembled into compressed rows in
+// O(entries) (ode/assemble.h). A dense A (an ODE without the sparse form) is read in place.
 //
 // Fallback chain of one island (reported in dMLCPIslandStats::fallback):
 //   1. the solver's own chain (regularize and retry, then ODE's Dantzig: Status::FallbackUsed);
@@ -19,6 +21,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "linalg/symmetric_rows.h"
+#include "ode/assemble.h"
 #include "ode/ordering_cache.h"
 #include "ode/row_identity.h"
 
@@ -63,11 +67,16 @@ void fill_blocks(const dMLCP& p, std::vector<int>& block_row, std::vector<int>& 
     }
 }
 
-Problem view_of(const dMLCP& p, const std::vector<int>& block_row, const std::vector<int>& block_body) {
+Problem view_of(const dMLCP& p, const std::vector<int>& block_row, const std::vector<int>& block_body,
+                linalg::SymmetricRows& assembled) {
     Problem q;
     q.n = p.m;
     q.A = p.A;
     q.lda = p.skip;
+    if (ode::has_sparse_form(p)) {
+        ode::assemble_rows(p, assembled);
+        q.sparse = &assembled;
+    }
     q.b = ConstStrided{p.pairsbx, 2};
     q.lo = ConstStrided{p.pairslh, 2};
     q.hi = ConstStrided{p.pairslh + 1, 2};
@@ -110,13 +119,14 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     thread_local std::vector<int> block_row, block_body;
     thread_local std::vector<RowKey> keys;
     thread_local OrderingCache::Signature structure;
+    thread_local linalg::SymmetricRows assembled;
     if (problem->joints != nullptr) {
         fill_blocks(*problem, block_row, block_body);
         row_keys(*problem, keys);
         if (!keys.empty()) OrderingCache::signature(*problem, keys.front(), structure);
     }
     const bool known_rows = problem->joints != nullptr && !keys.empty();
-    const Problem q = view_of(*problem, block_row, block_body);
+    const Problem q = view_of(*problem, block_row, block_body, assembled);
 
     Options options;
     bool warm = false;
@@ -157,12 +167,13 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
 }
 
 Method g_methods[std::size(kSolvers)];
+Method g_dense_form_methods[std::size(kSolvers)];  // stable userdata of ode_bpp_register_dense_form
 
 int register_all() {
     int registered = 0;
     for (size_t i = 0; i < std::size(kSolvers); ++i) {
         g_methods[i] = kSolvers[i].method;
-        registered += dRegisterMLCPSolver(kSolvers[i].name, &solve_island, &g_methods[i], dMLCP_API_VERSION);
+        registered += dRegisterMLCPSolverEx(kSolvers[i].name, &solve_island, &g_methods[i], dMLCP_API_VERSION, dMLCP_SPARSE);
     }
     return registered;
 }
@@ -179,10 +190,12 @@ void print_summary_at_exit() {
     if (!any && total.steps == 0 && std::strcmp(want, "always") != 0) return;
     char line[512];
     std::snprintf(line, sizeof line,
-                  "ode-bpp: solver=%s steps=%lu islands=%d rows=%d pivots=%ld fallbacks=%d failures=%d "
+                  "ode-bpp: solver=%s steps=%lld islands=%lld rows=%lld pivots=%lld fallbacks=%lld failures=%lld "
                   "solve_seconds=%.6f%s\n",
-                  any && total.solver != nullptr ? total.solver : "none", total.steps, total.islands, total.rows,
-                  total.pivots, total.fallbacks, total.failures, total.seconds,
+                  any && total.solver != nullptr ? total.solver : "none", static_cast<long long>(total.steps),
+                  static_cast<long long>(total.islands), static_cast<long long>(total.rows),
+                  static_cast<long long>(total.pivots), static_cast<long long>(total.fallbacks),
+                  static_cast<long long>(total.failures), total.seconds,
                   any ? "" : " (no world step with constraints)");
     std::fputs(line, stderr);
     if (const char* path = std::getenv("ODE_BPP_SUMMARY_FILE"); path != nullptr && path[0] != '\0') {
@@ -234,6 +247,17 @@ HookCounters hook_counters() {
 }  // namespace ode_bpp
 
 extern "C" int ode_bpp_register_solvers(void) { return ode_bpp::register_all(); }
+
+extern "C" int ode_bpp_register_dense_form(const char* method, const char* as_name) {
+    if (method == nullptr || as_name == nullptr) return 0;
+    for (std::size_t i = 0; i < std::size(ode_bpp::kSolvers); ++i) {
+        if (std::strcmp(ode_bpp::kSolvers[i].name, method) != 0) continue;
+        ode_bpp::g_dense_form_methods[i] = ode_bpp::kSolvers[i].method;
+        return dRegisterMLCPSolverEx(as_name, &ode_bpp::solve_island, &ode_bpp::g_dense_form_methods[i],
+                                     dMLCP_API_VERSION, 0);
+    }
+    return 0;
+}
 
 extern "C" int ode_bpp_use(dWorldID world, const char* solver_name) {
     ode_bpp::register_all();

@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <utility>
 
+#include "linalg/symmetric_rows.h"
+
 namespace ode_bpp::ordering {
 
 Graph graph_from_edges(int n, std::vector<std::pair<int, int>> edges) {
@@ -35,6 +37,17 @@ Graph graph_from_lower(const double* A, int lda, int n) {
             if (row[j] != 0.0) edges.emplace_back(i, j);
     }
     return graph_from_edges(n, std::move(edges));
+}
+
+Graph graph_from_rows(const linalg::SymmetricRows& A) {
+    Graph g;
+    g.xadj.assign(static_cast<std::size_t>(A.n()) + 1, 0);
+    g.adj.reserve(static_cast<std::size_t>(A.off_diagonal_entries()));
+    for (int i = 0; i < A.n(); ++i) {
+        for (int k = A.row_begin(i); k < A.row_end(i); ++k) g.adj.push_back(A.col(k));
+        g.xadj[i + 1] = static_cast<int>(g.adj.size());
+    }
+    return g;  // rows are sorted by column, both directions stored, no diagonal: a Graph as is
 }
 
 Graph block_graph(int num_blocks, const int* block_row, const int* block_body) {

@@ -5,6 +5,10 @@
 #include <utility>
 #include <vector>
 
+namespace ode_bpp::linalg {
+class SymmetricRows;
+}
+
 namespace ode_bpp::ordering {
 
 /// Undirected graph in compressed adjacency form: the neighbours of v are
@@ -24,6 +28,9 @@ Graph graph_from_edges(int n, std::vector<std::pair<int, int>> edges);
 /// The row graph of a symmetric matrix: rows i != j adjacent iff A(i,j) != 0, read from the
 /// lower triangle (j < i) of row-major A (n x n, row stride lda). Original row indices.
 Graph graph_from_lower(const double* A, int lda, int n);
+
+/// The same from compressed symmetric rows (its stored off-diagonal entries). O(n + nnz).
+Graph graph_from_rows(const linalg::SymmetricRows& A);
 
 /// The constraint graph on blocks (one block per joint): blocks a != b adjacent iff they share a
 /// body index >= 0. block_body: 2 * num_blocks entries, the two bodies of block k at [2k], [2k+1],

@@ -24,14 +24,14 @@ std::vector<int> identity_order(int n) {
     return perm;
 }
 
-std::vector<int> graph_order(int n, const double* A, int lda, int num_blocks, const int* block_row,
+std::vector<int> graph_order(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,
                              const int* block_body, bool reverse) {
     if (blocks_consistent(n, num_blocks, block_row, block_body)) {
         const Graph blocks = block_graph(num_blocks, block_row, block_body);
         return expand_blocks(cuthill_mckee(blocks, reverse), block_row, num_blocks);
     }
-    if (A == nullptr) return identity_order(n);
-    return cuthill_mckee(graph_from_lower(A, lda, n), reverse);
+    if (!row_graph) return identity_order(n);
+    return cuthill_mckee(row_graph(), reverse);
 }
 
 }  // namespace
@@ -58,13 +58,20 @@ std::vector<int> expand_blocks(const std::vector<int>& block_perm, const int* bl
     return perm;
 }
 
-std::vector<int> order_rows(int n, const double* A, int lda, int num_blocks, const int* block_row,
+std::vector<int> order_rows(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,
                             const int* block_body, OrderingKind kind, const std::vector<char>* likely_tight) {
     std::vector<int> perm = kind == OrderingKind::Identity
         ? identity_order(n)
-        : graph_order(n, A, lda, num_blocks, block_row, block_body, kind == OrderingKind::ReverseCuthillMcKee);
+        : graph_order(n, row_graph, num_blocks, block_row, block_body, kind == OrderingKind::ReverseCuthillMcKee);
     if (likely_tight != nullptr) move_flagged_last(perm, *likely_tight);
     return perm;
+}
+
+std::vector<int> order_rows(int n, const double* A, int lda, int num_blocks, const int* block_row,
+                            const int* block_body, OrderingKind kind, const std::vector<char>* likely_tight) {
+    std::function<Graph()> row_graph;
+    if (A != nullptr) row_graph = [=] { return graph_from_lower(A, lda, n); };
+    return order_rows(n, row_graph, num_blocks, block_row, block_body, kind, likely_tight);
 }
 
 }  // namespace ode_bpp::ordering

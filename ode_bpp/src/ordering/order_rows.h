@@ -1,7 +1,10 @@
 // The row ordering used before factoring (paper Sec. 3.4 and its future-work section).
 #pragma once
 
+#include <functional>
 #include <vector>
+
+#include "ordering/graph.h"
 
 namespace ode_bpp::ordering {
 
@@ -31,6 +34,11 @@ void move_flagged_last(std::vector<int>& perm, const std::vector<char>& flagged)
 /// to the end of the order, both groups keeping their relative order (the paper's future work:
 /// rows deleted late in the order make deletion cheap).
 std::vector<int> order_rows(int n, const double* A, int lda, int num_blocks, const int* block_row,
+                            const int* block_body, OrderingKind kind, const std::vector<char>* likely_tight);
+
+/// The same with the row graph of A from a callable, called only when the blocks are not usable
+/// (e.g. graph_from_rows of a sparse A); null: the identity then.
+std::vector<int> order_rows(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,
                             const int* block_body, OrderingKind kind, const std::vector<char>* likely_tight);
 
 }  // namespace ode_bpp::ordering

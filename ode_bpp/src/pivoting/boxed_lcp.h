@@ -5,14 +5,14 @@
 #include <vector>
 
 #include "ode_bpp/solver.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting {
 
 /// (A + shift I) x = b + w with, per row, x = lo and w >= 0, x = hi and w <= 0, or
 /// lo < x < hi and w = 0. All vectors n entries, permuted space.
 struct BoxedLcp {
-    const SymmetricRows* A = nullptr;
+    const linalg::SymmetricRows* A = nullptr;
     double shift = 0;               ///< regularization delta added to A's diagonal
     std::vector<double> b, lo, hi;  ///< lo may be -inf, hi +inf
     std::vector<char> always_free;  ///< rows < nub and rows with infinite bounds: never tight

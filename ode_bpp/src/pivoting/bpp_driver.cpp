@@ -13,7 +13,7 @@
 #include "pivoting/friction_update.h"
 #include "pivoting/ordering_choice.h"
 #include "pivoting/pivot_loop.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting {
 
@@ -91,7 +91,7 @@ bool is_identity(const std::vector<int>& perm) {
 struct DriverWorkspace {
     BoxedLcp lcp;
     std::vector<int> perm;
-    SymmetricRows permuted_A;
+    linalg::SymmetricRows permuted_A;
     std::vector<int> friction_rows, normal_of;
     std::vector<double> mu;
 };
@@ -111,7 +111,7 @@ struct DriverWorkspace {
 
 class BppDriver {
 public:
-    BppDriver(const Problem& p, const SymmetricRows& A, const Options& o) : p_(p), A_original_(A), o_(o) {
+    BppDriver(const Problem& p, const linalg::SymmetricRows& A, const Options& o) : p_(p), A_original_(A), o_(o) {
         settings_.max_pivots = std::max(1, o.max_pivots);
         settings_.murty_after = std::max(0, o.murty_after);
         settings_.tolerance = o.tolerance;
@@ -154,7 +154,7 @@ private:
 
     void build_permuted_problem() {
         const int n = p_.n;
-        const std::vector<int> to_new = inverse_permutation(perm_);
+        const std::vector<int> to_new = linalg::inverse_permutation(perm_);
         lcp_.A = Ap_;
         lcp_.b.resize(n);
         lcp_.lo.resize(n);
@@ -582,14 +582,14 @@ private:
     }
 
     const Problem& p_;
-    const SymmetricRows& A_original_;
+    const linalg::SymmetricRows& A_original_;
     const Options& o_;
     PivotSettings settings_;
     PivotCounters counters_;
     DriverWorkspace& ws_ = thread_workspace();
     std::vector<int>& perm_ = ws_.perm;
-    SymmetricRows& permuted_A_ = ws_.permuted_A;  // A in the solver's order, unless that is the caller's
-    const SymmetricRows* Ap_ = &A_original_;     // the matrix the solve works on (permuted space)
+    linalg::SymmetricRows& permuted_A_ = ws_.permuted_A;  // A in the solver's order, unless that is the caller's
+    const linalg::SymmetricRows* Ap_ = &A_original_;     // the matrix the solve works on (permuted space)
     std::unique_ptr<FreeSolver> solver_;
     BoxedLcp& lcp_ = ws_.lcp;
     std::vector<int>&friction_rows_ = ws_.friction_rows, &normal_of_ = ws_.normal_of;  // permuted indices
@@ -611,7 +611,7 @@ private:
 
 }  // namespace
 
-Result solve_bpp(const Problem& problem, const SymmetricRows& A, const Options& options, std::vector<double>& x) {
+Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, std::vector<double>& x) {
     return BppDriver(problem, A, options).run(x);
 }
 

@@ -6,15 +6,15 @@
 #include <vector>
 
 #include "ode_bpp/solver.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting {
 
 /// Solves a validated problem with options.method in {BppChol, BppDown, BppSky, Bpp}.
-/// A: SymmetricRows(problem, {}), the problem's matrix in original order.
+/// A: linalg::SymmetricRows(problem, {}), the problem's matrix in original order.
 /// x: out, n entries, original space (zero when the status is NotSpd).
 /// Fills status, message, fallback ("regularized" or empty), the counters, tight, states
 /// (original space) and factor_error; leaves the residual fields to the caller.
-Result solve_bpp(const Problem& problem, const SymmetricRows& A, const Options& options, std::vector<double>& x);
+Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, std::vector<double>& x);
 
 }  // namespace ode_bpp::pivoting

@@ -31,7 +31,7 @@ struct DenseWorkspace {
 class DenseRefactorSolver final : public FreeSolver {
 public:
     /// Every buffer is sized for |F| = n once: a solve allocates nothing per pivot step.
-    explicit DenseRefactorSolver(const SymmetricRows& Ap)
+    explicit DenseRefactorSolver(const linalg::SymmetricRows& Ap)
         : A_(Ap), ws_(sized_workspace(Ap.n())), store_(ws_.store.data(), Ap.n(), Ap.n()), rhs_(ws_.rhs.data(), Ap.n()) {}
 
     bool prepare(double shift) override {
@@ -102,7 +102,7 @@ private:
         return nf;
     }
 
-    const SymmetricRows& A_;
+    const linalg::SymmetricRows& A_;
     double shift_ = 0;
     DenseWorkspace& ws_;
     Eigen::Map<Eigen::MatrixXd> store_;  ///< n x n; the leading |F| x |F| block holds A_FF, then L_FF
@@ -114,7 +114,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<FreeSolver> make_dense_refactor_solver(const SymmetricRows& Ap) {
+std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRows& Ap) {
     return std::make_unique<DenseRefactorSolver>(Ap);
 }
 

@@ -13,7 +13,7 @@ bool pivot_breaks_down(double pivot_squared, double diagonal) {
     return !(pivot_squared > std::numeric_limits<double>::epsilon() * diagonal);
 }
 
-std::unique_ptr<FreeSolver> make_free_solver(Method method, const SymmetricRows& Ap) {
+std::unique_ptr<FreeSolver> make_free_solver(Method method, const linalg::SymmetricRows& Ap) {
     switch (method) {
         case Method::BppChol: return make_dense_refactor_solver(Ap);
         case Method::BppDown: return make_skyline_solver(Ap, SkylineVariant::DenseDelete);

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "ode_bpp/solver.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting {
 
@@ -18,7 +18,7 @@ enum class FactorOutcome {
     Breakdown,   ///< a Cholesky pivot was not safely positive: A_FF is not numerically SPD
 };
 
-/// Everything in the permuted index space of the SymmetricRows the strategy was built on.
+/// Everything in the permuted index space of the linalg::SymmetricRows the strategy was built on.
 class FreeSolver {
 public:
     virtual ~FreeSolver() = default;
@@ -43,6 +43,6 @@ bool pivot_breaks_down(double pivot_squared, double diagonal);
 
 /// The strategy of a BPP method (BppChol, BppDown, BppSky, Bpp) on Ap; null for other methods
 /// or when the method's kernels are not available.
-std::unique_ptr<FreeSolver> make_free_solver(Method method, const SymmetricRows& Ap);
+std::unique_ptr<FreeSolver> make_free_solver(Method method, const linalg::SymmetricRows& Ap);
 
 }  // namespace ode_bpp::pivoting

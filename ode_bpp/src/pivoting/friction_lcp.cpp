@@ -8,7 +8,7 @@ namespace ode_bpp::pivoting {
 namespace {
 
 /// A + shift I, dense (permuted space).
-Eigen::MatrixXd dense(const SymmetricRows& A, double shift) {
+Eigen::MatrixXd dense(const linalg::SymmetricRows& A, double shift) {
     const int n = A.n();
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
     for (int i = 0; i < n; ++i) {

@@ -12,7 +12,7 @@ namespace {
 constexpr double kMinReciprocalCondition = 1e6 * std::numeric_limits<double>::epsilon();
 
 /// z = A_F,j: column j of A at the free rows, 0 at the tight ones (A symmetric: row j is column j).
-void free_column(const SymmetricRows& A, const std::vector<char>& tight, int j, std::vector<double>& z) {
+void free_column(const linalg::SymmetricRows& A, const std::vector<char>& tight, int j, std::vector<double>& z) {
     std::fill(z.begin(), z.end(), 0.0);
     for (int e = A.row_begin(j); e < A.row_end(j); ++e)
         if (!tight[A.col(e)]) z[A.col(e)] = A.val(e);

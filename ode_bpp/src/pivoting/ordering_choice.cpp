@@ -6,6 +6,7 @@
 #include "linalg/cost_model.h"
 #include "linalg/envelope.h"
 #include "linalg/skyline.h"
+#include "ordering/graph.h"
 #include "ordering/order_rows.h"
 #include "pivoting/step_cost.h"
 
@@ -19,8 +20,9 @@ std::vector<int> identity(int n) {
     return perm;
 }
 
-std::vector<int> order(const Problem& p, ordering::OrderingKind kind, const std::vector<char>* likely_tight) {
-    std::vector<int> perm = ordering::order_rows(p.n, p.A, p.lda, p.num_blocks, p.block_row, p.block_body, kind, likely_tight);
+std::vector<int> order(const Problem& p, const linalg::SymmetricRows& A, ordering::OrderingKind kind) {
+    const auto row_graph = [&A] { return ordering::graph_from_rows(A); };
+    std::vector<int> perm = ordering::order_rows(p.n, row_graph, p.num_blocks, p.block_row, p.block_body, kind, nullptr);
     return ordering::is_permutation(perm, p.n) ? perm : identity(p.n);
 }
 
@@ -36,7 +38,7 @@ std::vector<char> warm_tight(const std::vector<RowState>& warm_start) {
 }
 
 /// The smaller envelope of Cuthill-McKee and its reverse (Sec. 3.4).
-const std::vector<int>& smaller_envelope(const SymmetricRows& A, const std::vector<int>& cm, const std::vector<int>& rcm) {
+const std::vector<int>& smaller_envelope(const linalg::SymmetricRows& A, const std::vector<int>& cm, const std::vector<int>& rcm) {
     return linalg::envelope_size(A.row_profile_under(rcm)) <= linalg::envelope_size(A.row_profile_under(cm)) ? rcm : cm;
 }
 
@@ -48,7 +50,7 @@ constexpr double kOrderingCostPerEntry = 300;
 /// True when factoring in the caller's own order, kStepsPerWarmSolve times, costs less than
 /// computing an ordering at all: small islands (every one of up to ~20 rows), where the orderings
 /// made bpp slower than a dense Cholesky of the same frame.
-bool ordering_cannot_pay(const SymmetricRows& A) {
+bool ordering_cannot_pay(const linalg::SymmetricRows& A) {
     const linalg::CostModel identity(linalg::SkylineShape::from_row_profile(A.row_profile()));
     const double nnz = A.n() > 0 ? A.row_end(A.n() - 1) : 0;
     return kStepsPerWarmSolve * identity.refactor_cost(0) <= kOrderingCostPerEntry * (A.n() + nnz);
@@ -56,7 +58,7 @@ bool ordering_cannot_pay(const SymmetricRows& A) {
 
 }  // namespace
 
-double warm_solve_price(const SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight) {
+double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight) {
     const linalg::SkylineShape shape = linalg::SkylineShape::from_row_profile(A.row_profile_under(perm));
     const linalg::CostModel cost(shape);
     std::vector<int> tight_rows;
@@ -69,14 +71,14 @@ double warm_solve_price(const SymmetricRows& A, const std::vector<int>& perm, co
     return factor + kStepsPerWarmSolve * step;
 }
 
-std::vector<int> choose_ordering(Method method, const Problem& problem, const SymmetricRows& A,
+std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
                                  const std::vector<RowState>& warm_start) {
     using ordering::OrderingKind;
-    if (method == Method::BppSky) return order(problem, OrderingKind::CuthillMcKee, nullptr);
+    if (method == Method::BppSky) return order(problem, A, OrderingKind::CuthillMcKee);
     if (method != Method::Bpp) return identity(problem.n);
     if (ordering_cannot_pay(A)) return identity(problem.n);
-    const std::vector<int> cm = order(problem, OrderingKind::CuthillMcKee, nullptr);
-    const std::vector<int> rcm = order(problem, OrderingKind::ReverseCuthillMcKee, nullptr);
+    const std::vector<int> cm = order(problem, A, OrderingKind::CuthillMcKee);
+    const std::vector<int> rcm = order(problem, A, OrderingKind::ReverseCuthillMcKee);
     std::vector<int> best = smaller_envelope(A, cm, rcm);
     const std::vector<char> tight = warm_tight(warm_start);
     if (tight.empty()) return best;

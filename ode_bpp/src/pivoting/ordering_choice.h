@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "ode_bpp/solver.h"
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting {
 
@@ -18,7 +18,7 @@ namespace ode_bpp::pivoting {
 ///    those rows moved last (where deleting or refactoring them touches the fewest columns), and
 ///    the lowest warm_solve_price wins (moving them can widen the envelope more than it saves).
 /// A: the problem's matrix in original order (for envelope sizes).
-std::vector<int> choose_ordering(Method method, const Problem& problem, const SymmetricRows& A,
+std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
                                  const std::vector<RowState>& warm_start);
 
 /// Warm-started solves take a few steps (two fixed-bound solves in Frozen mode).
@@ -27,6 +27,6 @@ constexpr double kStepsPerWarmSolve = 3;
 /// Estimated price (step_cost.h units) of factoring L0 in the ordering perm (perm[new] = old) and
 /// taking kStepsPerWarmSolve steps at the tight set `tight` (original space, n flags), each the
 /// cheaper of deletion and refactoring. A: original order.
-double warm_solve_price(const SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight);
+double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight);
 
 }  // namespace ode_bpp::pivoting

@@ -26,14 +26,14 @@ namespace {
 using linalg::SkylineMatrix;
 using linalg::SkylineShape;
 
-SkylineShape shape_for(const SymmetricRows& A, SkylineVariant variant) {
+SkylineShape shape_for(const linalg::SymmetricRows& A, SkylineVariant variant) {
     return variant == SkylineVariant::DenseDelete ? SkylineShape::dense(A.n())
                                                   : SkylineShape::from_row_profile(A.row_profile());
 }
 
 class SkylineSolver final : public FreeSolver {
 public:
-    SkylineSolver(const SymmetricRows& A, SkylineVariant variant)
+    SkylineSolver(const linalg::SymmetricRows& A, SkylineVariant variant)
         : A_(A), variant_(variant), shape_(shape_for(A, variant)), cost_(shape_) {}
 
     /// Alg. 2 line 2: L0 L0^T = Ap + shift I inside the envelope.
@@ -163,7 +163,7 @@ private:
                   L_.values().begin() + colptr[from]);
     }
 
-    const SymmetricRows& A_;
+    const linalg::SymmetricRows& A_;
     const SkylineVariant variant_;
     const SkylineShape shape_;
     const linalg::CostModel cost_;
@@ -177,7 +177,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<FreeSolver> make_skyline_solver(const SymmetricRows& Ap, SkylineVariant variant) {
+std::unique_ptr<FreeSolver> make_skyline_solver(const linalg::SymmetricRows& Ap, SkylineVariant variant) {
     return std::make_unique<SkylineSolver>(Ap, variant);
 }
 

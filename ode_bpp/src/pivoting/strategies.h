@@ -8,7 +8,7 @@
 namespace ode_bpp::pivoting {
 
 /// Alg. 1: gathers A_FF densely and factors it afresh (Eigen LLT) at every step; no L0.
-std::unique_ptr<FreeSolver> make_dense_refactor_solver(const SymmetricRows& Ap);
+std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRows& Ap);
 
 /// How the skyline-based strategies obtain L_FF from L0.
 enum class SkylineVariant {
@@ -18,6 +18,6 @@ enum class SkylineVariant {
 };
 
 /// Alg. 2 (+3) and ours, on Ap's envelope (dense storage for DenseDelete).
-std::unique_ptr<FreeSolver> make_skyline_solver(const SymmetricRows& Ap, SkylineVariant variant);
+std::unique_ptr<FreeSolver> make_skyline_solver(const linalg::SymmetricRows& Ap, SkylineVariant variant);
 
 }  // namespace ode_bpp::pivoting

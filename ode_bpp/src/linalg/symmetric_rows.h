@@ -1,34 +1,49 @@
-// A symmetric matrix as compressed rows holding both triangles, in a permuted index space.
+// A symmetric matrix as compressed rows holding both triangles: the one form of A that every
+// solver path works on (paper Eq. 2's A = J M^-1 J^T + C/h^2, in ODE's scaling).
 //
 // The pivoting loop needs A only through products (w = A x - b, Eq. 5, and the right-hand side
 // b_F - A_FT x_T of Eq. 6) and through the entries its factor strategies load. Keeping A's
-// non-zeros once, permuted, makes every product O(nnz) instead of O(n^2) on ODE's dense,
-// mostly-zero A, and keeps the Bpp variant's memory at O(nnz + envelope).
+// non-zeros once makes every product O(nnz) instead of O(n^2), and keeps memory at
+// O(nnz + envelope). Built either from a dense lower triangle (files, tests, the CLI) or
+// straight from the Jacobian (ode/assemble.h); both give the same rows, so one path follows.
 #pragma once
 
 #include <vector>
 
 #include "ode_bpp/solver.h"
 
-namespace ode_bpp::pivoting {
+namespace ode_bpp::linalg {
+
+/// One strictly lower entry A(row, col), row > col.
+struct LowerEntry {
+    int row, col;
+    double value;
+};
 
 class SymmetricRows {
 public:
     SymmetricRows() = default;
-    /// Ap(i,j) = A(perm[i], perm[j]) read from the lower triangle of problem.A (original space).
-    /// perm: perm[new] = old, n entries, or empty for the identity. Exact zeros are not stored.
+    /// Ap(i,j) = A(perm[i], perm[j]) of the problem's matrix (original space: its dense lower
+    /// triangle, or problem.sparse). perm: perm[new] = old, n entries, or empty for the identity.
+    /// Exact zeros of a dense A are not stored.
     SymmetricRows(const Problem& problem, const std::vector<int>& perm);
     /// The same as constructing from (problem, perm), reusing this object's storage.
     void assign(const Problem& problem, const std::vector<int>& perm);
+    /// The matrix with the given diagonal (n entries) and strictly lower entries, listed row by
+    /// row with increasing columns (so every stored row is sorted by column). O(n + entries).
+    void assign_lower(std::vector<double> diagonal, const std::vector<LowerEntry>& lower);
     /// The same matrix under a further permutation: result(i,j) = this(perm[i], perm[j]).
     SymmetricRows permuted(const std::vector<int>& perm) const;
     /// The same, written into out (its storage reused); out must not be *this.
     void permute_into(const std::vector<int>& perm, SymmetricRows& out) const;
 
     int n() const { return n_; }
+    /// Stored off-diagonal entries (both triangles).
+    int off_diagonal_entries() const { return rowptr_.empty() ? 0 : rowptr_[n_]; }
     double diag(int i) const { return diag_[i]; }
     double max_diag() const;
-    /// Off-diagonal entries of row i: positions rowptr(i) .. rowptr(i+1)-1 of col()/val().
+    /// Off-diagonal entries of row i: positions rowptr(i) .. rowptr(i+1)-1 of col()/val(),
+    /// columns increasing.
     int row_begin(int i) const { return rowptr_[i]; }
     int row_end(int i) const { return rowptr_[i + 1]; }
     int col(int k) const { return col_[k]; }
@@ -42,6 +57,9 @@ public:
     std::vector<int> row_profile() const;
     /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.
     std::vector<int> row_profile_under(const std::vector<int>& perm) const;
+    /// The lower triangle, diagonal included, as a dense row-major n x n array with row stride
+    /// lda (the upper triangle is left as it is). O(n^2): for ODE's Dantzig and file capture.
+    void to_dense_lower(double* A, int lda) const;
 
 private:
     int n_ = 0;
@@ -53,4 +71,4 @@ private:
 /// inverse[perm[i]] = i.
 std::vector<int> inverse_permutation(const std::vector<int>& perm);
 
-}  // namespace ode_bpp::pivoting
+}  // namespace ode_bpp::linalg

@@ -1,21 +1,16 @@
-#include "pivoting/symmetric_rows.h"
+#include "linalg/symmetric_rows.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-namespace ode_bpp::pivoting {
+namespace ode_bpp::linalg {
 
 namespace {
 
-struct Entry {
-    int row, col;
-    double value;
-};
-
 struct Scratch {
     std::vector<int> to_new, count, next;
-    std::vector<Entry> lower;
+    std::vector<LowerEntry> lower;
 };
 
 // noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
@@ -36,38 +31,67 @@ std::vector<int> inverse_permutation(const std::vector<int>& perm) {
 SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) { assign(p, perm); }
 
 void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
-    n_ = p.n;
+    if (p.sparse != nullptr) {
+        if (perm.empty()) *this = *p.sparse;
+        else p.sparse->permute_into(perm, *this);
+        return;
+    }
     // scratch that keeps its capacity from one island to the next (allocation dominated small islands)
     Scratch& scratch = thread_scratch();
-    std::vector<int>&to_new = scratch.to_new, &count = scratch.count, &next = scratch.next;
-    std::vector<Entry>& lower = scratch.lower;  // one pass over the dense triangle; A is mostly zeros
-    to_new.resize(static_cast<std::size_t>(n_));
+    std::vector<int>& to_new = scratch.to_new;
+    std::vector<LowerEntry>& lower = scratch.lower;  // one pass over the dense triangle; A is mostly zeros
+    to_new.resize(static_cast<std::size_t>(p.n));
     if (perm.empty()) std::iota(to_new.begin(), to_new.end(), 0);
     else
-        for (int i = 0; i < n_; ++i) to_new[perm[i]] = i;
-    diag_.assign(static_cast<std::size_t>(n_), 0.0);
+        for (int i = 0; i < p.n; ++i) to_new[perm[i]] = i;
+    std::vector<double> diagonal(static_cast<std::size_t>(p.n), 0.0);
     lower.clear();
-    count.assign(static_cast<std::size_t>(n_), 0);
-    for (int i = 0; i < n_; ++i) {
+    for (int i = 0; i < p.n; ++i) {
         const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
-        diag_[to_new[i]] = row[i];
+        diagonal[to_new[i]] = row[i];
         for (int j = 0; j < i; ++j)
             if (row[j] != 0) {
-                lower.push_back({to_new[i], to_new[j], row[j]});
-                ++count[to_new[i]];
-                ++count[to_new[j]];
+                const int a = to_new[i], b = to_new[j];
+                lower.push_back(a > b ? LowerEntry{a, b, row[j]} : LowerEntry{b, a, row[j]});
             }
+    }
+    if (!perm.empty())  // assign_lower wants rows in order; a permutation scrambles them
+        std::sort(lower.begin(), lower.end(),
+                  [](const LowerEntry& x, const LowerEntry& y) { return x.row != y.row ? x.row < y.row : x.col < y.col; });
+    assign_lower(std::move(diagonal), lower);
+}
+
+void SymmetricRows::assign_lower(std::vector<double> diagonal, const std::vector<LowerEntry>& lower) {
+    n_ = static_cast<int>(diagonal.size());
+    diag_ = std::move(diagonal);
+    Scratch& scratch = thread_scratch();
+    std::vector<int>&count = scratch.count, &next = scratch.next;
+    count.assign(static_cast<std::size_t>(n_), 0);
+    for (const LowerEntry& e : lower) {
+        ++count[e.row];
+        ++count[e.col];
     }
     rowptr_.assign(static_cast<std::size_t>(n_) + 1, 0);
     for (int i = 0; i < n_; ++i) rowptr_[i + 1] = rowptr_[i] + count[i];
     col_.resize(static_cast<std::size_t>(rowptr_[n_]));
     val_.resize(col_.size());
     next.assign(rowptr_.begin(), rowptr_.end() - 1);
-    for (const Entry& e : lower) {
+    // row-major order of `lower` fills each row with increasing columns: A(r, j < r) while the
+    // sweep is at row r, then A(i > r, r) as it passes the later rows i
+    for (const LowerEntry& e : lower) {
         col_[next[e.row]] = e.col;
         val_[next[e.row]++] = e.value;
         col_[next[e.col]] = e.row;
         val_[next[e.col]++] = e.value;
+    }
+}
+
+void SymmetricRows::to_dense_lower(double* A, int lda) const {
+    for (int i = 0; i < n_; ++i) {
+        double* row = A + static_cast<std::ptrdiff_t>(i) * lda;
+        std::fill(row, row + i, 0.0);
+        row[i] = diag_[i];
+        for (int k = rowptr_[i]; k < rowptr_[i + 1] && col_[k] < i; ++k) row[col_[k]] = val_[k];
     }
 }
 
@@ -139,4 +163,4 @@ std::vector<int> SymmetricRows::row_profile_under(const std::vector<int>& perm) 
     return first;
 }
 
-}  // namespace ode_bpp::pivoting
+}  // namespace ode_bpp::linalg

@@ -1,0 +1,136 @@
+#include "ode/assemble.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "ode_bpp/ode.h"
+
+namespace ode_bpp::ode {
+
+namespace {
+
+/// Joints by body: the joints on body b are joints[first[b] .. first[b+1]-1], increasing.
+struct Incidence {
+    std::vector<int> first, joints;
+};
+
+struct Scratch {
+    Incidence incidence;
+    std::vector<int> neighbours;
+    std::vector<linalg::LowerEntry> lower;
+};
+
+// noinline: inlined, GCC re-derives a thread_local's address at every use (symmetric_rows.cpp)
+[[gnu::noinline]] Scratch& thread_scratch() {
+    thread_local Scratch scratch;
+    return scratch;
+}
+
+void build_incidence(const dMLCP& p, Incidence& inc) {
+    inc.first.assign(static_cast<std::size_t>(p.nb) + 1, 0);
+    for (int k = 0; k < p.nj; ++k)
+        for (int body : p.joints[k].body)
+            if (body >= 0) ++inc.first[body + 1];
+    for (int b = 0; b < p.nb; ++b) inc.first[b + 1] += inc.first[b];
+    inc.joints.resize(static_cast<std::size_t>(inc.first[p.nb]));
+    std::vector<int> next(inc.first.begin(), inc.first.end() - 1);
+    for (int k = 0; k < p.nj; ++k)
+        for (int body : p.joints[k].body)
+            if (body >= 0) inc.joints[next[body]++] = k;
+}
+
+/// Joints q < p that share a body with joint p, increasing.
+void earlier_neighbours(const dMLCP& p, const Incidence& inc, int joint, std::vector<int>& out) {
+    out.clear();
+    for (int body : p.joints[joint].body) {
+        if (body < 0) continue;
+        for (int k = inc.first[body]; k < inc.first[body + 1] && inc.joints[k] < joint; ++k) out.push_back(inc.joints[k]);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+/// Row r's Jacobian (or J M^-1) for side s (0: body[0], 1: body[1]) of its joint (<ode/mlcp.h>).
+const dReal* side_row(const dReal* base, int width, const dMLCPJoint& joint, int side, int r) {
+    const int index = 2 * joint.row + side * joint.m + (r - joint.row);
+    return base + static_cast<std::ptrdiff_t>(index) * width;
+}
+
+/// JinvM_i . J_j over one body, summed as ODE's MultiplyAddJinvMxJToA does.
+double body_term(const dReal* jinvm, const dReal* j) {
+    double sum = jinvm[0] * j[0];
+    sum += jinvm[1] * j[1];
+    sum += jinvm[2] * j[2];
+    sum += jinvm[4] * j[3];
+    sum += jinvm[5] * j[4];
+    sum += jinvm[6] * j[5];
+    return sum;
+}
+
+/// The side of joint q that holds body b, or -1.
+int side_of(const dMLCPJoint& q, int body) {
+    if (q.body[1] == body) return 1;
+    return q.body[0] == body ? 0 : -1;
+}
+
+/// A(i,j) added onto `start`: row i in joint p, row j in joint q <= p (same or an earlier joint).
+double entry(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j, double start) {
+    double a = start;
+    for (int side = 0; side < 2; ++side) {
+        const int body = p.body[side];
+        const int other = body < 0 ? -1 : side_of(q, body);
+        if (other < 0) continue;
+        a += body_term(side_row(island.JinvM, dMLCP_JINVM_ROW, p, side, i), side_row(island.J, dMLCP_J_ROW, q, other, j));
+    }
+    return a;
+}
+
+}  // namespace
+
+bool has_sparse_form(const dMLCP& p) {
+    return p.A == nullptr && p.J != nullptr && p.JinvM != nullptr && p.cfm != nullptr && p.joints != nullptr &&
+           p.m > 0;
+}
+
+void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out) {
+    Scratch& scratch = thread_scratch();
+    build_incidence(island, scratch.incidence);
+    std::vector<linalg::LowerEntry>& lower = scratch.lower;
+    lower.clear();
+    std::vector<double> diagonal(static_cast<std::size_t>(island.m));
+    for (int pj = 0; pj < island.nj; ++pj) {
+        const dMLCPJoint& p = island.joints[pj];
+        earlier_neighbours(island, scratch.incidence, pj, scratch.neighbours);
+        for (int i = p.row; i < p.row + p.m; ++i) {
+            for (int qj : scratch.neighbours) {
+                const dMLCPJoint& q = island.joints[qj];
+                for (int j = q.row; j < q.row + q.m; ++j)
+                    if (const double a = entry(island, p, i, q, j, 0.0); a != 0) lower.push_back({i, j, a});
+            }
+            for (int j = p.row; j < i; ++j)
+                if (const double a = entry(island, p, i, p, j, 0.0); a != 0) lower.push_back({i, j, a});
+            diagonal[i] = entry(island, p, i, p, i, island.cfm[i]);
+        }
+    }
+    out.assign_lower(std::move(diagonal), lower);
+}
+
+}  // namespace ode_bpp::ode
+
+namespace ode_bpp {
+
+void island_matrix_lower(const dMLCP& island, std::vector<double>& A) {
+    const auto m = static_cast<std::size_t>(std::max(island.m, 0));
+    A.assign(m * m, 0.0);
+    if (ode::has_sparse_form(island)) {
+        linalg::SymmetricRows rows;
+        ode::assemble_rows(island, rows);
+        rows.to_dense_lower(A.data(), island.m);
+        return;
+    }
+    if (island.A == nullptr) return;
+    for (std::size_t i = 0; i < m; ++i)
+        for (std::size_t j = 0; j <= i; ++j) A[i * m + j] = island.A[i * static_cast<std::size_t>(island.skip) + j];
+}
+
+}  // namespace ode_bpp

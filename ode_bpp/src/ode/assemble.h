@@ -1,0 +1,27 @@
+// A = J M^-1 J^T + diag(cfm) from the world step's Jacobian (paper Eq. 2), straight into
+// compressed symmetric rows, without the dense m x m array ODE would otherwise fill.
+//
+// Index space: ODE's island row order (original). Input layout: <ode/mlcp.h> (the sparse form).
+#pragma once
+
+#include <ode/mlcp.h>
+
+#include "linalg/symmetric_rows.h"
+
+namespace ode_bpp::ode {
+
+/// True when the island comes in the sparse form (J, JinvM, cfm and the joints, A null).
+bool has_sparse_form(const dMLCP& island);
+
+/// Assembles A of an island in the sparse form into out (its storage reused).
+///
+/// Block (p,q) of A, for joints p and q that share a body, is the sum over the shared bodies b of
+/// JinvM_{p,b} J_{q,b}^T; no other block is formed, so the cost is O(entries of A) (6 multiply-adds
+/// each) and the memory O(entries). Each entry is summed in the order ODE's Stage2b/2c use
+/// (lower entry (i,j), i > j: row i's JinvM against row j's J, body[0] of row i's joint first,
+/// the diagonal starting from cfm_i), so the rows equal those read from ODE's dense A bit for bit
+/// and both forms give one trajectory. Exact zeros are not stored, as from the dense A.
+/// Island: has_sparse_form. Thread-safe (scratch per thread).
+void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out);
+
+}  // namespace ode_bpp::ode

@@ -182,7 +182,7 @@ int register_all() {
 /// ODE_BPP_SUMMARY is set and the process stepped a world (ODE_BPP_SUMMARY=always: in any case):
 /// what ode-bpp-run promises about a launched program.
 void print_summary_at_exit() {
-    const char* want = std::getenv("ODE_BPP_SUMMARY");
+    const char* want = secure_getenv("ODE_BPP_SUMMARY");
     if (want == nullptr || want[0] == '\0' || std::strcmp(want, "0") == 0) return;
     dMLCPStepStats total{};
     const bool any = dGetMLCPProcessStats(&total) != 0;
@@ -198,7 +198,8 @@ void print_summary_at_exit() {
                   static_cast<long long>(total.failures), total.seconds,
                   any ? "" : " (no world step with constraints)");
     std::fputs(line, stderr);
-    if (const char* path = std::getenv("ODE_BPP_SUMMARY_FILE"); path != nullptr && path[0] != '\0') {
+    // secure_getenv: a setgid or setuid program must not append to a file its caller names
+    if (const char* path = secure_getenv("ODE_BPP_SUMMARY_FILE"); path != nullptr && path[0] != '\0') {
         if (std::FILE* f = std::fopen(path, "a")) {
             std::fputs(line, f);
             std::fclose(f);

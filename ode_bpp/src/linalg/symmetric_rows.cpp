@@ -11,6 +11,7 @@ namespace {
 struct Scratch {
     std::vector<int> to_new, count, next;
     std::vector<LowerEntry> lower;
+    std::vector<double> diagonal;
 };
 
 // noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
@@ -44,7 +45,8 @@ void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
     if (perm.empty()) std::iota(to_new.begin(), to_new.end(), 0);
     else
         for (int i = 0; i < p.n; ++i) to_new[perm[i]] = i;
-    std::vector<double> diagonal(static_cast<std::size_t>(p.n), 0.0);
+    std::vector<double>& diagonal = scratch.diagonal;
+    diagonal.assign(static_cast<std::size_t>(p.n), 0.0);
     lower.clear();
     for (int i = 0; i < p.n; ++i) {
         const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
@@ -58,12 +60,12 @@ void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
     if (!perm.empty())  // assign_lower wants rows in order; a permutation scrambles them
         std::sort(lower.begin(), lower.end(),
                   [](const LowerEntry& x, const LowerEntry& y) { return x.row != y.row ? x.row < y.row : x.col < y.col; });
-    assign_lower(std::move(diagonal), lower);
+    assign_lower(diagonal, lower);
 }
 
-void SymmetricRows::assign_lower(std::vector<double> diagonal, const std::vector<LowerEntry>& lower) {
+void SymmetricRows::assign_lower(std::vector<double>& diagonal, const std::vector<LowerEntry>& lower) {
     n_ = static_cast<int>(diagonal.size());
-    diag_ = std::move(diagonal);
+    diag_.swap(diagonal);
     Scratch& scratch = thread_scratch();
     std::vector<int>&count = scratch.count, &next = scratch.next;
     count.assign(static_cast<std::size_t>(n_), 0);

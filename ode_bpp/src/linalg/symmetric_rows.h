@@ -31,7 +31,8 @@ public:
     void assign(const Problem& problem, const std::vector<int>& perm);
     /// The matrix with the given diagonal (n entries) and strictly lower entries, listed row by
     /// row with increasing columns (so every stored row is sorted by column). O(n + entries).
-    void assign_lower(std::vector<double> diagonal, const std::vector<LowerEntry>& lower);
+    /// diagonal is swapped in: the caller gets this object's former storage back to reuse.
+    void assign_lower(std::vector<double>& diagonal, const std::vector<LowerEntry>& lower);
     /// The same matrix under a further permutation: result(i,j) = this(perm[i], perm[j]).
     SymmetricRows permuted(const std::vector<int>& perm) const;
     /// The same, written into out (its storage reused); out must not be *this.

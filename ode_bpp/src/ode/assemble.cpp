@@ -11,20 +11,8 @@ namespace {
 
 /// Joints by body: the joints on body b are joints[first[b] .. first[b+1]-1], increasing.
 struct Incidence {
-    std::vector<int> first, joints;
+    std::vector<int> first, joints, next;
 };
-
-struct Scratch {
-    Incidence incidence;
-    std::vector<int> neighbours;
-    std::vector<linalg::LowerEntry> lower;
-};
-
-// noinline: inlined, GCC re-derives a thread_local's address at every use (symmetric_rows.cpp)
-[[gnu::noinline]] Scratch& thread_scratch() {
-    thread_local Scratch scratch;
-    return scratch;
-}
 
 void build_incidence(const dMLCP& p, Incidence& inc) {
     inc.first.assign(static_cast<std::size_t>(p.nb) + 1, 0);
@@ -33,7 +21,8 @@ void build_incidence(const dMLCP& p, Incidence& inc) {
             if (body >= 0) ++inc.first[body + 1];
     for (int b = 0; b < p.nb; ++b) inc.first[b + 1] += inc.first[b];
     inc.joints.resize(static_cast<std::size_t>(inc.first[p.nb]));
-    std::vector<int> next(inc.first.begin(), inc.first.end() - 1);
+    std::vector<int>& next = inc.next;
+    next.assign(inc.first.begin(), inc.first.end() - 1);
     for (int k = 0; k < p.nj; ++k)
         for (int body : p.joints[k].body)
             if (body >= 0) inc.joints[next[body]++] = k;
@@ -67,22 +56,67 @@ double body_term(const dReal* jinvm, const dReal* j) {
     return sum;
 }
 
-/// The side of joint q that holds body b, or -1.
-int side_of(const dMLCPJoint& q, int body) {
-    if (q.body[1] == body) return 1;
-    return q.body[0] == body ? 0 : -1;
-}
+/// The bodies joints p and q share, as pairs of sides (p's side, q's side), p's body[0] first:
+/// the order in which ODE adds their terms.
+struct SharedSides {
+    int count = 0;
+    int p_side[2] = {0, 0}, q_side[2] = {0, 0};
+};
 
-/// A(i,j) added onto `start`: row i in joint p, row j in joint q <= p (same or an earlier joint).
-double entry(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j, double start) {
-    double a = start;
+SharedSides shared_sides(const dMLCPJoint& p, const dMLCPJoint& q) {
+    SharedSides shared;
     for (int side = 0; side < 2; ++side) {
         const int body = p.body[side];
-        const int other = body < 0 ? -1 : side_of(q, body);
+        if (body < 0) continue;
+        const int other = q.body[1] == body ? 1 : q.body[0] == body ? 0 : -1;
         if (other < 0) continue;
-        a += body_term(side_row(island.JinvM, dMLCP_JINVM_ROW, p, side, i), side_row(island.J, dMLCP_J_ROW, q, other, j));
+        shared.p_side[shared.count] = side;
+        shared.q_side[shared.count++] = other;
     }
+    return shared;
+}
+
+struct Scratch {
+    Incidence incidence;
+    std::vector<int> neighbours;
+    std::vector<SharedSides> sides;
+    std::vector<linalg::LowerEntry> lower;
+    std::vector<double> diagonal;
+};
+
+// noinline: inlined, GCC re-derives a thread_local's address at every use (symmetric_rows.cpp)
+[[gnu::noinline]] Scratch& thread_scratch() {
+    thread_local Scratch scratch;
+    return scratch;
+}
+
+/// A(i,j) added onto `start`: row i of joint p against row j of joint q (q == p or earlier).
+double entry(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j, const SharedSides& shared,
+             double start) {
+    double a = start;
+    for (int k = 0; k < shared.count; ++k)
+        a += body_term(side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[k], i),
+                       side_row(island.J, dMLCP_J_ROW, q, shared.q_side[k], j));
     return a;
+}
+
+/// The lower entries and the diagonal of joint p's rows, row by row with increasing columns.
+void assemble_joint(const dMLCP& island, int pj, const std::vector<int>& neighbours, std::vector<SharedSides>& sides,
+                    std::vector<linalg::LowerEntry>& lower, std::vector<double>& diagonal) {
+    const dMLCPJoint& p = island.joints[pj];
+    sides.clear();
+    for (int qj : neighbours) sides.push_back(shared_sides(p, island.joints[qj]));
+    const SharedSides own = shared_sides(p, p);
+    for (int i = p.row; i < p.row + p.m; ++i) {
+        for (std::size_t k = 0; k < neighbours.size(); ++k) {
+            const dMLCPJoint& q = island.joints[neighbours[k]];
+            for (int j = q.row; j < q.row + q.m; ++j)
+                if (const double a = entry(island, p, i, q, j, sides[k], 0.0); a != 0) lower.push_back({i, j, a});
+        }
+        for (int j = p.row; j < i; ++j)
+            if (const double a = entry(island, p, i, p, j, own, 0.0); a != 0) lower.push_back({i, j, a});
+        diagonal[i] = entry(island, p, i, p, i, own, island.cfm[i]);
+    }
 }
 
 }  // namespace
@@ -97,22 +131,13 @@ void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out) {
     build_incidence(island, scratch.incidence);
     std::vector<linalg::LowerEntry>& lower = scratch.lower;
     lower.clear();
-    std::vector<double> diagonal(static_cast<std::size_t>(island.m));
+    std::vector<double>& diagonal = scratch.diagonal;
+    diagonal.resize(static_cast<std::size_t>(island.m));
     for (int pj = 0; pj < island.nj; ++pj) {
-        const dMLCPJoint& p = island.joints[pj];
         earlier_neighbours(island, scratch.incidence, pj, scratch.neighbours);
-        for (int i = p.row; i < p.row + p.m; ++i) {
-            for (int qj : scratch.neighbours) {
-                const dMLCPJoint& q = island.joints[qj];
-                for (int j = q.row; j < q.row + q.m; ++j)
-                    if (const double a = entry(island, p, i, q, j, 0.0); a != 0) lower.push_back({i, j, a});
-            }
-            for (int j = p.row; j < i; ++j)
-                if (const double a = entry(island, p, i, p, j, 0.0); a != 0) lower.push_back({i, j, a});
-            diagonal[i] = entry(island, p, i, p, i, island.cfm[i]);
-        }
+        assemble_joint(island, pj, scratch.neighbours, scratch.sides, lower, diagonal);
     }
-    out.assign_lower(std::move(diagonal), lower);
+    out.assign_lower(diagonal, lower);
 }
 
 }  // namespace ode_bpp::ode

@@ -128,7 +128,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     const bool known_rows = problem->joints != nullptr && !keys.empty();
     const Problem q = view_of(*problem, block_row, block_body, assembled);
 
-    Options options;
+    thread_local Options options;  // its vectors keep their capacity from island to island
     bool warm = false;
     {
         std::lock_guard<std::mutex> g(hook().lock);

@@ -90,13 +90,34 @@ struct Scratch {
     return scratch;
 }
 
-/// A(i,j) added onto `start`: row i of joint p against row j of joint q (q == p or earlier).
-double entry(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j, const SharedSides& shared,
-             double start) {
-    double a = start;
-    for (int k = 0; k < shared.count; ++k)
-        a += body_term(side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[k], i),
-                       side_row(island.J, dMLCP_J_ROW, q, shared.q_side[k], j));
+/// Row i of joint p against the rows j of joint q (q == p or earlier) before j_end: the entries
+/// start + sum over the shared bodies of (row i of J M^-1) . (row j of J), in ODE's order; the
+/// pointers to q's rows advance row by row. Calls emit(j, value) for each j.
+template <typename Emit>
+void row_against_joint(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j_end,
+                       const SharedSides& shared, double start, Emit emit) {
+    const dReal* jinvm[2] = {nullptr, nullptr};
+    const dReal* jq[2] = {nullptr, nullptr};
+    for (int k = 0; k < shared.count; ++k) {
+        jinvm[k] = side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[k], i);
+        jq[k] = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[k], q.row);
+    }
+    for (int j = q.row; j < j_end; ++j) {
+        double a = start;
+        for (int k = 0; k < shared.count; ++k) {
+            a += body_term(jinvm[k], jq[k]);
+            jq[k] += dMLCP_J_ROW;
+        }
+        emit(j, a);
+    }
+}
+
+/// A(i,i): cfm_i, then each of p's bodies (body[0] first), as ODE adds them onto its diagonal.
+double diagonal_entry(const dMLCP& island, const dMLCPJoint& p, int i, const SharedSides& own) {
+    double a = island.cfm[i];
+    for (int k = 0; k < own.count; ++k)
+        a += body_term(side_row(island.JinvM, dMLCP_JINVM_ROW, p, own.p_side[k], i),
+                       side_row(island.J, dMLCP_J_ROW, p, own.q_side[k], i));
     return a;
 }
 
@@ -108,14 +129,15 @@ void assemble_joint(const dMLCP& island, int pj, const std::vector<int>& neighbo
     for (int qj : neighbours) sides.push_back(shared_sides(p, island.joints[qj]));
     const SharedSides own = shared_sides(p, p);
     for (int i = p.row; i < p.row + p.m; ++i) {
+        const auto keep = [&lower, i](int j, double a) {
+            if (a != 0) lower.push_back({i, j, a});  // exact zeros are not stored, as from the dense A
+        };
         for (std::size_t k = 0; k < neighbours.size(); ++k) {
             const dMLCPJoint& q = island.joints[neighbours[k]];
-            for (int j = q.row; j < q.row + q.m; ++j)
-                if (const double a = entry(island, p, i, q, j, sides[k], 0.0); a != 0) lower.push_back({i, j, a});
+            row_against_joint(island, p, i, q, q.row + q.m, sides[k], 0.0, keep);
         }
-        for (int j = p.row; j < i; ++j)
-            if (const double a = entry(island, p, i, p, j, own, 0.0); a != 0) lower.push_back({i, j, a});
-        diagonal[i] = entry(island, p, i, p, i, own, island.cfm[i]);
+        row_against_joint(island, p, i, p, i, own, 0.0, keep);
+        diagonal[i] = diagonal_entry(island, p, i, own);
     }
 }
 

@@ -11,7 +11,7 @@
 //                     speed-ups speedup_vs_eigen, speedup_vs_refactor (> 1: deleting is faster).
 //                     The benchmark's own time is the sum of the three.
 // The three run interleaved in every iteration, so that their ratios are measured under the
-// same machine load (NOTES: time comparisons only hold as ratios within one run).
+// same machine load (time comparisons only hold as ratios within one run).
 // For a table: --benchmark_out=fig4.csv --benchmark_out_format=csv
 #include <benchmark/benchmark.h>
 

@@ -23,7 +23,7 @@ using Eigen::MatrixXd;
 using linalg::SkylineMatrix;
 using linalg::SkylineShape;
 
-/// Half-width of the band matrices: the skyline height of ODE chains after ordering (NOTES).
+/// Half-width of the band matrices: the skyline height of ODE chains after ordering (docs/maths.md).
 constexpr int kHalfBandwidth = 12;
 /// The matrix sizes m of every benchmark.
 inline const int kSizes[] = {50, 100, 200, 400, 1000};

@@ -64,10 +64,10 @@ def solve_dense(A, b):
 
 
 def notes_friction_example():
-    """The 3-row problem of shared/NOTES.md: one contact normal and two friction rows, mu = 0.5."""
+    """The 3-row problem of docs/maths.md (Dantzig's friction semantics): one contact normal and two friction rows, mu = 0.5."""
     A = [[2.0, 0.3, 0.1], [0.3, 1.5, 0.2], [0.1, 0.2, 1.8]]
     return encode(A, b=[1.0, 0.9, -0.2], lo=[0.0, -0.5, -0.5], hi=[INF, 0.5, 0.5], nub=0,
-                  findex=[-1, 0, 0], meta=[("scene", "notes-friction-example"), ("source", "shared/NOTES.md")])
+                  findex=[-1, 0, 0], meta=[("scene", "notes-friction-example"), ("source", "docs/maths.md")])
 
 
 def ball_chain():

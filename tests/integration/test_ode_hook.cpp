@@ -242,7 +242,7 @@ TEST(OdeHook, FailedSolverFallsBackToDantzigAndTheWorldStaysSane) {
 
 TEST(OdeHook, SolveMLCPDantzigSolvesABoxedProblem) {
     OdeLifetime ode;
-    // A = [[2,.3,.1],[.3,1.5,.2],[.1,.2,1.8]], b = [1,.9,-.2]: box [-0.1, 0.1] on row 2 (NOTES' example, no findex)
+    // A = [[2,.3,.1],[.3,1.5,.2],[.1,.2,1.8]], b = [1,.9,-.2]: box [-0.1, 0.1] on row 2 (docs/maths.md's friction example, no findex)
     const int n = 3, skip = dPAD(n);
     std::vector<dReal> A(n * skip, 0.0);
     const double full[3][3] = {{2, .3, .1}, {.3, 1.5, .2}, {.1, .2, 1.8}};

@@ -5,7 +5,7 @@
 
 namespace ode_bpp::problems {
 
-/// NOTES' example where Dantzig's frozen friction bound breaks the friction cone:
+/// docs/maths.md's example where Dantzig's frozen friction bound breaks the friction cone:
 /// A = [[2,.3,.1],[.3,1.5,.2],[.1,.2,1.8]], b = (1, .9, -.2); row 0 a normal (lo = 0),
 /// row 1 its friction row (mu = 0.5), row 2 unbounded (through infinite bounds, nub = 0).
 OwnedProblem dantzig_friction_3x3();

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The installed header and the library agree on double precision (NOTES: the precision trap).
+# The installed header and the library agree on double precision (scripts/build-ode.sh: the precision trap).
 set -euo pipefail
 grep -q '^#define dDOUBLE' "${ODE_ROOT:?}/include/ode/precision.h" || { echo "FAIL: precision.h is not double"; exit 1; }
 text=$(strings "$ODE_ROOT/lib/libode.so.8")

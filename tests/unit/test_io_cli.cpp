@@ -110,7 +110,7 @@ TEST_F(Cli, DamagedFileIsReportedAndTheOthersStillRun) {
 }
 
 TEST_F(Cli, OptionsReachTheSolver) {
-    // NOTES: on this problem frozen (Dantzig's) friction leaves |x1| > mu x0; consistent must not
+    // docs/maths.md (Dantzig's friction semantics): on this problem frozen (Dantzig's) friction leaves |x1| > mu x0; consistent must not
     const std::string file = (io_test::data_dir() / "notes-friction-3.mlcp").string();
     const ToolRun frozen = run("--methods bpp " + file);
     const ToolRun consistent = run("--friction=consistent --methods bpp,pgs --pgs-iterations 3 " + file);

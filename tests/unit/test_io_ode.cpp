@@ -150,7 +150,7 @@ TEST_F(OdeCapture, FileHoldsWhatOdeBuilt) {
 }
 
 TEST_F(OdeCapture, BlocksExplainTheSparsityOfA) {
-    // NOTES: block (i,j) of A is non-zero only where joints i and j share a body.
+    // docs/ode-world-step.md: block (i,j) of A is non-zero only where joints i and j share a body.
     collide_and_step(0.01);
     ASSERT_EQ(captured.files.size(), 1u);
     const ode_bpp::MlcpFile& f = captured.files[0];

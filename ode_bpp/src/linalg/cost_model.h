@@ -1,5 +1,5 @@
 // Operation counts of the skyline kernels, for choosing per pivot step between copying L0 and
-// deleting the tight rows (Alg. 2) or refactoring from the first changed column (NOTES: cost).
+// deleting the tight rows (Alg. 2) or refactoring from the first changed column (docs/maths.md: what deletion and refactoring cost).
 #pragma once
 
 #include <cstddef>

@@ -4,7 +4,7 @@
 // ordering). Column k stores rows k .. sky[k] contiguously, diagonal first:
 //     L(r, k) = values[colptr[k] + (r - k)]  for k <= r <= sky[k].
 // sky is non-decreasing in k (it is the column profile of a row envelope), which is what keeps
-// every row deletion inside the storage: deleting rows never widens the envelope (NOTES).
+// every row deletion inside the storage: deleting rows never widens the envelope (docs/maths.md).
 #pragma once
 
 #include <cstddef>

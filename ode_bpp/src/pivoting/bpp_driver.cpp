@@ -429,7 +429,7 @@ private:
         return pivot_fixed_bounds(lcp_, *solver_, rest, states, x, counters_);
     }
 
-    /// Rescue continuation (NOTES: what made BPP converge at CFM 1e-10): solves with A + delta I,
+    /// Rescue continuation (docs/maths.md: what makes BPP converge inside ODE): solves with A + delta I,
     /// delta falling from kRescueStart * max diag to the target shift_, the first stage warm-started
     /// from `start`, every later one from the last converged stage's index set, with adaptive
     /// steps (constants above). Nearly redundant contact rows make A_FF nearly singular at
@@ -484,7 +484,7 @@ private:
     }
 
     /// Solves with A + delta_k I, delta_k falling geometrically, each stage warm-started from the
-    /// last one's index set (NOTES: this is what made cold BPP converge at CFM 1e-10). Only the
+    /// last one's index set (docs/maths.md: what makes BPP converge inside ODE). Only the
     /// first fixed-bound solve of a call runs it; later ones start warm anyway.
     void run_continuation(std::vector<RowState>& states, std::vector<double>& x) {
         continuation_done_ = true;

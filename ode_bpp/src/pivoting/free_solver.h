@@ -30,7 +30,7 @@ public:
     virtual FactorOutcome solve_free(const std::vector<char>& tight, std::vector<double>& x, bool fresh) = 0;
     /// Solves (Ap + shift I)_FF x_F = rhs_F again, with the factor and the free set of the latest
     /// solve_free that succeeded (x as there: rhs in at free rows, x_F out, 0 at tight rows).
-    /// O(envelope) per call: what extra right-hand sides at one index set cost (friction_newton.h).
+    /// O(envelope) per call: what extra right-hand sides at one index set cost.
     virtual void solve_again(std::vector<double>& x) = 0;
     /// Table 4: ||L_deleted - chol(A_FF)||_F at this tight set, or NaN where not meaningful.
     virtual double factor_error(const std::vector<char>& tight) const;

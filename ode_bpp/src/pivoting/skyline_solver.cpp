@@ -106,7 +106,7 @@ private:
     int restore_from() const { return std::min(dirty_from_, tight_rows_.front()); }
 
     /// Bpp's cost model: the cheaper of deleting |T| rows and refactoring from the first tight
-    /// column (NOTES: deletion costs ~ |T| (m - i) height, refactoring ~ m height^2).
+    /// column (docs/maths.md: deletion costs ~ |T| (m - i) height, refactoring ~ m height^2).
     bool prefers_refactor() const {
         if (variant_ != SkylineVariant::CostModel) return false;
         return refactor_price(cost_, tight_rows_, restore_from()) < deletion_price(cost_, tight_rows_, restore_from());

@@ -12,6 +12,7 @@
 
 #include "ode_bpp/ode.h"
 #include "scenes/scene.h"
+#include "scene_test_support.h"
 
 namespace ode_bpp::scenes {
 namespace {
@@ -64,15 +65,6 @@ double largest_relative_difference(const Solutions& a, const Solutions& b) {
         double scale = 1;
         for (double v : xa) scale = std::max(scale, std::abs(v));
         for (std::size_t i = 0; i < xa.size(); ++i) worst = std::max(worst, std::abs(xa[i] - xb[i]) / scale);
-    }
-    return worst;
-}
-
-double largest_position_difference(const SceneWorld& a, const SceneWorld& b) {
-    double worst = 0;
-    for (std::size_t k = 0; k < a.bodies().size(); ++k) {
-        const dReal *pa = dBodyGetPosition(a.bodies()[k]), *pb = dBodyGetPosition(b.bodies()[k]);
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(pa[c] - pb[c]));
     }
     return worst;
 }

@@ -13,6 +13,7 @@
 
 #include "ode_bpp/ode.h"
 #include "scenes/scene.h"
+#include "scene_test_support.h"
 
 namespace ode_bpp::scenes {
 namespace {
@@ -45,15 +46,6 @@ struct World {
     std::unique_ptr<Scene> scene;
     SceneWorld world;
 };
-
-double largest_position_difference(const SceneWorld& a, const SceneWorld& b) {
-    double worst = 0;
-    for (std::size_t k = 0; k < a.bodies().size(); ++k) {
-        const dReal *pa = dBodyGetPosition(a.bodies()[k]), *pb = dBodyGetPosition(b.bodies()[k]);
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(pa[c] - pb[c]));
-    }
-    return worst;
-}
 
 /// Steps both worlds kSteps times and returns the largest body position difference seen.
 double step_together(World& a, World& b) {

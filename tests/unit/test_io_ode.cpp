@@ -30,7 +30,8 @@ Raw copy_raw(const dMLCP& p) {
     Raw r;
     r.m = p.m, r.nub = p.nub, r.nb = p.nb;
     for (int i = 0; i < p.m; ++i) {
-        for (int j = 0; j <= i; ++j) r.A_lower.push_back(p.A[i * p.skip + j]);
+        if (p.A != nullptr)  // the dense form; the sparse form has no A to copy
+            for (int j = 0; j <= i; ++j) r.A_lower.push_back(p.A[i * p.skip + j]);
         r.b.push_back(p.pairsbx[2 * i]);
         r.lo.push_back(p.pairslh[2 * i]);
         r.hi.push_back(p.pairslh[2 * i + 1]);
@@ -61,11 +62,13 @@ void observe(const dMLCP* problem, const dMLCPIslandStats* stats, void* userdata
     c->reread.push_back(ode_bpp::read_mlcp(path));
 }
 
-class OdeCapture : public ::testing::Test {
-protected:
-    void SetUp() override {
+// Two boxes on a hinge, the lower one on the ground, stepped with the named solver; every island
+// is captured through the observer.
+struct HingedBoxes {
+    explicit HingedBoxes(const char* solver) {
         dInitODE2(0);
-        captured.dir = (std::filesystem::temp_directory_path() / ("ode_bpp_capture_" + std::to_string(::getpid())))
+        captured.dir = (std::filesystem::temp_directory_path() /
+                        ("ode_bpp_capture_" + std::to_string(::getpid()) + "_" + solver))
                            .string();
         std::filesystem::create_directories(captured.dir);
         world = dWorldCreate();
@@ -81,14 +84,18 @@ protected:
         dJointSetHingeAnchor(hinge, 0, 0, 1.05);
         dJointSetHingeAxis(hinge, 0, 1, 0);
         dWorldSetMLCPObserver(world, observe, &captured);
+        solver_known = dWorldSetMLCPSolver(world, solver) != 0;
     }
-    void TearDown() override {
+    ~HingedBoxes() {
         dJointGroupDestroy(contacts);
         dSpaceDestroy(space);
         dWorldDestroy(world);
         dCloseODE();
         std::filesystem::remove_all(captured.dir);
     }
+    HingedBoxes(const HingedBoxes&) = delete;
+    HingedBoxes& operator=(const HingedBoxes&) = delete;
+
     dBodyID make_box(double z) {
         dBodyID body = dBodyCreate(world);
         dMass mass;
@@ -118,6 +125,16 @@ protected:
     dJointGroupID contacts{};
     dBodyID lower{}, upper{};
     Captured captured;
+    bool solver_known = false;
+};
+
+// ODE's own Dantzig: the island comes in the dense form, so the observer's copy of A is an oracle.
+class OdeCapture : public ::testing::Test {
+protected:
+    HingedBoxes scene{"dantzig"};
+    dWorldID& world = scene.world;
+    Captured& captured = scene.captured;
+    void collide_and_step(double h) { scene.collide_and_step(h); }
 };
 
 TEST_F(OdeCapture, FileHoldsWhatOdeBuilt) {
@@ -212,3 +229,25 @@ TEST(OdeCaptureInput, JointsThatDoNotTileTheRowsAreRefused) {
 }
 
 }  // namespace
+
+TEST(OdeCaptureForms, TheSparseFormCapturesTheFileTheDenseFormDoes) {
+    // ode-bpp's "bpp" gets J, J M^-1 and the CFM instead of A (docs/ode-world-step.md); capture
+    // builds A from them, and the first step (same state in both worlds) must give the same file
+    HingedBoxes dense("dantzig"), sparse("bpp");
+    ASSERT_TRUE(sparse.solver_known) << "bpp is not registered: link libode_bpp";
+    dense.collide_and_step(0.01);
+    sparse.collide_and_step(0.01);
+    ASSERT_TRUE(sparse.captured.errors.empty()) << sparse.captured.errors.front();
+    ASSERT_EQ(sparse.captured.files.size(), 1u);
+    ASSERT_EQ(dense.captured.files.size(), 1u);
+    const ode_bpp::MlcpFile &s = sparse.captured.files[0], &d = dense.captured.files[0];
+    ASSERT_GT(s.n, 5);
+    EXPECT_TRUE(sparse.captured.raw[0].A_lower.empty()) << "bpp's island came with a dense A";
+    EXPECT_EQ(s.A, d.A);
+    EXPECT_EQ(s.b, d.b);
+    EXPECT_EQ(s.lo, d.lo);
+    EXPECT_EQ(s.hi, d.hi);
+    EXPECT_EQ(s.findex, d.findex);
+    EXPECT_EQ(s.block_row, d.block_row);
+    EXPECT_EQ(s.block_body, d.block_body);
+}

@@ -54,6 +54,9 @@ public:
     void multiply(const std::vector<double>& x, double shift, std::vector<double>& y) const;
     /// y = |Ap + shift I| |x| (the per-row scale of the tolerance), n entries.
     void abs_multiply(const std::vector<double>& x, double shift, std::vector<double>& y) const;
+    /// y = (Ap + shift I) x and scale = |Ap + shift I| |x| in one pass over the entries (the
+    /// pivoting loop's w and tolerance scale of Eq. 5), n entries each.
+    void multiply_with_scale(const double* x, double shift, double* y, double* scale) const;
     /// Row profile of the lower triangle: first[i] = min({i} U {j < i : Ap(i,j) != 0}).
     std::vector<int> row_profile() const;
     /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.

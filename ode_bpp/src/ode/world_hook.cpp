@@ -90,6 +90,17 @@ Problem view_of(const dMLCP& p, const std::vector<int>& block_row, const std::ve
     return q;
 }
 
+/// True when some row can be tight (bounded, or a friction row): only then does an index set of
+/// an earlier step say anything about this one. A chain of ball joints has none; its rows are
+/// free at every step, so its islands skip the row memory (two hash lookups per row).
+bool has_bounded_rows(const dMLCP& p) {
+    for (int i = p.nub; i < p.m; ++i) {
+        if (p.findex != nullptr && p.findex[i] >= 0) return true;
+        if (p.pairslh[2 * i] > -dInfinity || p.pairslh[2 * i + 1] < dInfinity) return true;
+    }
+    return false;
+}
+
 int count_tight(const std::vector<RowState>& states) {
     int tight = 0;
     for (RowState s : states) tight += s != RowState::Free ? 1 : 0;
@@ -126,6 +137,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
         if (!keys.empty()) OrderingCache::signature(*problem, keys.front(), structure);
     }
     const bool known_rows = problem->joints != nullptr && !keys.empty();
+    const bool use_memory = known_rows && has_bounded_rows(*problem);
     const Problem q = view_of(*problem, block_row, block_body, assembled);
 
     thread_local Options options;  // its vectors keep their capacity from island to island
@@ -134,7 +146,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
         std::lock_guard<std::mutex> g(hook().lock);
         WorldState& ws = hook().worlds[problem->world];
         options = ws.settings.options;
-        if (ws.settings.warm_start && known_rows) warm = ws.memory.recall(keys, problem->step, options.warm_start);
+        if (ws.settings.warm_start && use_memory) warm = ws.memory.recall(keys, problem->step, options.warm_start);
         if (known_rows) {
             if (const std::vector<int>* known = ws.orderings.find(structure)) options.ordering = *known;
         }
@@ -154,7 +166,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     std::lock_guard<std::mutex> g(hook().lock);
     HookState& h = hook();
     WorldState& ws = h.worlds[problem->world];
-    if (known_rows && status != dMLCPFailed) ws.memory.remember(keys, problem->step, r.states);
+    if (use_memory && status != dMLCPFailed) ws.memory.remember(keys, problem->step, r.states);
     if (known_rows && !r.ordering.empty() && r.ordering != options.ordering)
         ws.orderings.store(structure, r.ordering);
     h.counters.islands += 1;

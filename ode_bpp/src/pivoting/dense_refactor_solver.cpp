@@ -1,14 +1,22 @@
 // Alg. 1 line 5: L_FF <- Cholesky(A_FF), gathered densely at every pivot step.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <optional>
+
+#include <algorithm>
 #include <vector>
+
+#include "linalg/dense_cholesky.h"
 
 #include "pivoting/strategies.h"
 
 namespace ode_bpp::pivoting {
 
 namespace {
+
+/// Up to this |F| the factor is linalg::dense_cholesky's plain loops, beyond it Eigen's blocked
+/// LLT: on 6-row islands the LLT's set-up per call cost more than its flops (callgrind, ODE's
+/// demo_motors), while on hundreds of rows (Alg. 1 in the paper's comparison) blocking wins.
+constexpr int kPlainLoopsUpTo = 32;
 
 /// Buffers kept per thread so that their capacity outlives one solve (allocation dominated small
 /// islands). One solver object per thread at a time: the driver makes one per solve.
@@ -31,8 +39,7 @@ struct DenseWorkspace {
 class DenseRefactorSolver final : public FreeSolver {
 public:
     /// Every buffer is sized for |F| = n once: a solve allocates nothing per pivot step.
-    explicit DenseRefactorSolver(const linalg::SymmetricRows& Ap)
-        : A_(Ap), ws_(sized_workspace(Ap.n())), store_(ws_.store.data(), Ap.n(), Ap.n()), rhs_(ws_.rhs.data(), Ap.n()) {}
+    explicit DenseRefactorSolver(const linalg::SymmetricRows& Ap) : A_(Ap), ws_(sized_workspace(Ap.n())) {}
 
     bool prepare(double shift) override {
         shift_ = shift;
@@ -40,63 +47,70 @@ public:
     }
 
     FactorOutcome solve_free(const std::vector<char>& tight, std::vector<double>& x, bool) override {
-        llt_.reset();
+        factored_ = false;
         const int nf = gather_free(tight);
         for (int i = 0; i < A_.n(); ++i)
             if (tight[i]) x[i] = 0;
         if (nf == 0) return FactorOutcome::Refactored;
-        for (int k = 0; k < nf; ++k) diagonal_[k] = store_(k, k);
-        Block leading = store_.topLeftCorner(nf, nf);
-        llt_.emplace(leading);  // L_FF L_FF^T = A_FF, in place in store_'s leading block
-        if (llt_->info() != Eigen::Success) return breakdown();
-        for (int k = 0; k < nf; ++k) {
-            const double l = store_(k, k);
-            if (pivot_breaks_down(l * l, diagonal_[k])) return breakdown();
-        }
+        if (!factor(nf)) return FactorOutcome::Breakdown;
+        factored_ = true;
         solve_in_place(x);
         return FactorOutcome::Refactored;
     }
 
     void solve_again(std::vector<double>& x) override {
         for (int i = 0; i < A_.n(); ++i)
-            if (position_[i] < 0) x[i] = 0;
-        if (llt_) solve_in_place(x);
+            if (ws_.position[i] < 0) x[i] = 0;
+        if (factored_) solve_in_place(x);
     }
 
 private:
-    using Block = Eigen::Ref<Eigen::MatrixXd>;
-
-    FactorOutcome breakdown() {
-        llt_.reset();
-        return FactorOutcome::Breakdown;
+    /// L_FF L_FF^T = A_FF, in place in the leading |F| x |F| block of store. Row-major lower
+    /// is column-major upper: Eigen's LLT<Upper> writes U = L^T where L belongs.
+    bool factor(int nf) {
+        if (nf <= kPlainLoopsUpTo) return linalg::dense_cholesky(ws_.store.data(), nf, A_.n(), ws_.diagonal.data()) < 0;
+        Eigen::Map<Eigen::MatrixXd> store(ws_.store.data(), A_.n(), A_.n());
+        Eigen::Ref<Eigen::MatrixXd> leading = store.topLeftCorner(nf, nf);
+        const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Upper> llt(leading);
+        if (llt.info() != Eigen::Success) return false;
+        for (int k = 0; k < nf; ++k) {
+            const double l = leading(k, k);
+            if (pivot_breaks_down(l * l, ws_.diagonal[k])) return false;
+        }
+        return true;
     }
 
     /// x_F <- L_FF^-T L_FF^-1 x_F.
     void solve_in_place(std::vector<double>& x) {
-        const int nf = static_cast<int>(free_.size());
-        auto rhs = rhs_.head(nf);
-        for (int k = 0; k < nf; ++k) rhs[k] = x[free_[k]];
-        llt_->solveInPlace(rhs);
-        for (int k = 0; k < nf; ++k) x[free_[k]] = rhs[k];
+        const std::vector<int>& free = ws_.free;
+        const int nf = static_cast<int>(free.size());
+        double* rhs = ws_.rhs.data();
+        for (int k = 0; k < nf; ++k) rhs[k] = x[free[k]];
+        linalg::dense_cholesky_solve(ws_.store.data(), nf, A_.n(), rhs);
+        for (int k = 0; k < nf; ++k) x[free[k]] = rhs[k];
     }
 
-    /// A_FF (+ shift I) into store_'s leading |F| x |F| block (lower triangle: all LLT reads),
-    /// free rows in increasing permuted order; returns |F|.
+    /// A_FF (+ shift I) into store's leading |F| x |F| block (row stride n, lower triangle: all
+    /// the factorization reads) and its diagonal into ws_.diagonal, free rows in increasing
+    /// permuted order; returns |F|.
     int gather_free(const std::vector<char>& tight) {
         const int n = A_.n();
-        free_.clear();
+        std::vector<int>& free = ws_.free;
+        std::vector<int>& position = ws_.position;
+        free.clear();
         for (int i = 0; i < n; ++i) {
-            position_[i] = tight[i] ? -1 : static_cast<int>(free_.size());
-            if (!tight[i]) free_.push_back(i);
+            position[i] = tight[i] ? -1 : static_cast<int>(free.size());
+            if (!tight[i]) free.push_back(i);
         }
-        const int nf = static_cast<int>(free_.size());
-        store_.topLeftCorner(nf, nf).triangularView<Eigen::Lower>().setZero();
+        const int nf = static_cast<int>(free.size());
         for (int a = 0; a < nf; ++a) {
-            const int i = free_[a];
-            store_(a, a) = A_.diag(i) + shift_;
+            double* row = ws_.store.data() + static_cast<std::size_t>(a) * n;
+            std::fill(row, row + a, 0.0);
+            const int i = free[a];
+            row[a] = ws_.diagonal[a] = A_.diag(i) + shift_;
             for (int k = A_.row_begin(i); k < A_.row_end(i); ++k) {
-                const int b = position_[A_.col(k)];
-                if (b >= 0 && b < a) store_(a, b) = A_.val(k);
+                const int b = position[A_.col(k)];
+                if (b >= 0 && b < a) row[b] = A_.val(k);
             }
         }
         return nf;
@@ -104,12 +118,8 @@ private:
 
     const linalg::SymmetricRows& A_;
     double shift_ = 0;
-    DenseWorkspace& ws_;
-    Eigen::Map<Eigen::MatrixXd> store_;  ///< n x n; the leading |F| x |F| block holds A_FF, then L_FF
-    Eigen::Map<Eigen::VectorXd> rhs_;
-    std::vector<double>& diagonal_ = ws_.diagonal;  ///< A_FF's diagonal before factoring (the breakdown test)
-    std::vector<int>&free_ = ws_.free, &position_ = ws_.position;
-    std::optional<Eigen::LLT<Block>> llt_;  ///< the latest successful factor (views store_)
+    DenseWorkspace& ws_;  ///< store: n x n, the leading |F| x |F| block holds A_FF, then L_FF
+    bool factored_ = false;  ///< store holds the factor of the latest successful solve_free
 };
 
 }  // namespace

@@ -284,8 +284,9 @@ private:
 
     /// w = (A + shift I) x - b and the row scales (|A||x| + |b|)_i.
     void refresh_w(const std::vector<double>& x) {
-        lcp_.A->multiply(x, lcp_.shift, w_);
-        lcp_.A->abs_multiply(x, lcp_.shift, scale_);
+        w_.resize(static_cast<std::size_t>(n_));
+        scale_.resize(static_cast<std::size_t>(n_));
+        lcp_.A->multiply_with_scale(x.data(), lcp_.shift, w_.data(), scale_.data());
         for (int i = 0; i < n_; ++i) {
             w_[i] -= lcp_.b[i];
             scale_[i] += std::abs(lcp_.b[i]);

@@ -28,6 +28,7 @@
 
 #include <unistd.h>
 
+#include "ode_bpp/capture.h"
 #include "ode_bpp/io.h"
 #include "ode_bpp/ode.h"
 #include "ode_bpp/residuals.h"

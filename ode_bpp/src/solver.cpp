@@ -66,10 +66,17 @@ int count_tight(const std::vector<RowState>& states) {
 
 Result run_dantzig(const Problem& p, const linalg::SymmetricRows& A, std::vector<double>& x) {
     Result r;
-    if (!baselines::solve_dantzig(p, A, x)) {
-        r.status = Status::NotSpd;
-        r.message = "ODE's Dantzig refused the problem (no memory)";
-        return r;
+    switch (baselines::solve_dantzig(p, A, x)) {
+        case baselines::DantzigOutcome::Solved: break;
+        case baselines::DantzigOutcome::Refused:
+            r.status = Status::NotSpd;
+            r.message = "ODE's Dantzig refused the problem (no memory)";
+            return r;
+        case baselines::DantzigOutcome::Unavailable:
+            r.status = Status::InvalidInput;
+            r.message = "method dantzig needs ODE's Dantzig, which the ODE glue (libode_bpp) provides; "
+                        "ode_bpp_core alone has none";
+            return r;
     }
     r.status = Status::Converged;
     r.states = states_of(p, x);
@@ -103,7 +110,8 @@ void apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Opt
     std::string reason = r.status == Status::NotSpd ? r.message : "the answer was not finite";
     if (o.dantzig_fallback && o.method != Method::Dantzig) {
         std::vector<double> xd;
-        if (baselines::solve_dantzig(p, A, xd) && all_finite(xd)) {
+        const baselines::DantzigOutcome outcome = baselines::solve_dantzig(p, A, xd);
+        if (outcome == baselines::DantzigOutcome::Solved && all_finite(xd)) {
             x = std::move(xd);
             r.status = Status::FallbackUsed;
             r.fallback = r.fallback.empty() ? "dantzig" : r.fallback + "+dantzig";
@@ -112,7 +120,8 @@ void apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Opt
             r.tight = count_tight(r.states);
             return;
         }
-        reason += "; ODE's Dantzig failed too";
+        reason += outcome == baselines::DantzigOutcome::Unavailable ? "; no Dantzig to fall back on (ode_bpp_core alone)"
+                                                                    : "; ODE's Dantzig failed too";
     }
     x.assign(static_cast<std::size_t>(p.n), 0.0);
     r.status = Status::NotSpd;

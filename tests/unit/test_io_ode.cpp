@@ -7,6 +7,7 @@
 #include <ode/mlcp.h>
 #include <ode/ode.h>
 
+#include "ode_bpp/capture.h"
 #include "test_io_support.h"
 
 namespace {

@@ -18,8 +18,6 @@
 #include <utility>
 #include <vector>
 
-#include <ode/mlcp.h>
-
 #include "ode_bpp/solver.h"
 
 namespace ode_bpp {
@@ -80,14 +78,6 @@ ReadResult read_mlcp_bytes(const std::uint8_t* data, std::size_t size, const std
 std::optional<MlcpFile> copy_problem(const Problem& problem, const Metadata& meta,
                                      const double* x_ref, std::string* error);
 
-/// Copies the island ODE handed to the MLCP observer or solver: A (m x skip, lower block
-/// triangle) is read below and on the diagonal only, pairsbx/pairslh are de-interleaved, and
-/// joint k becomes block k (rows joints[k].row .. +m, bodies joints[k].body[0..1]) over nb
-/// bodies. Must be called before the solve (Dantzig destroys A). Sets metadata step_size and,
-/// if the world is known, cfm and erp, unless meta already has them. Fails, with a message,
-/// when the joints do not tile the rows or the structure is otherwise invalid.
-std::optional<MlcpFile> capture_from_ode(const dMLCP& problem, const Metadata& meta, std::string* error);
-
 /// Serializes a file image (version kMlcpFormatVersion). Fails on an invalid structure.
 bool encode_mlcp(const MlcpFile& file, std::vector<std::uint8_t>* bytes, std::string* error);
 
@@ -96,10 +86,6 @@ bool write_mlcp(const std::string& path, const MlcpFile& file, std::string* erro
 /// copy_problem followed by write_mlcp.
 bool write_mlcp(const std::string& path, const Problem& problem, const Metadata& meta,
                 const double* x_ref, std::string* error);
-/// capture_from_ode followed by write_mlcp.
-bool write_mlcp_from_ode(const std::string& path, const dMLCP& problem, const Metadata& meta,
-                         std::string* error);
-
 /// CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of size bytes: the file's checksum.
 std::uint32_t crc32(const std::uint8_t* data, std::size_t size);
 

@@ -1,44 +1,19 @@
 #include "baselines/dantzig.h"
 
-#include <ode/ode.h>
-
-#include <vector>
-
-#include "linalg/symmetric_rows.h"
-
 namespace ode_bpp::baselines {
 
-bool solve_dantzig(const Problem& p, const linalg::SymmetricRows& As, std::vector<double>& x) {
-    static_assert(sizeof(dReal) == sizeof(double), "the patched ODE must be double precision");
-    const int n = p.n;
-    const int stride = dPAD(n);
-    std::vector<double> A(static_cast<std::size_t>(n) * stride, 0.0);
-    for (int i = 0; i < n; ++i) {
-        double* row = A.data() + static_cast<std::size_t>(i) * stride;
-        row[i] = As.diag(i);
-        for (int k = As.row_begin(i); k < As.row_end(i); ++k) row[As.col(k)] = As.val(k);
+namespace {
+DantzigBackend g_backend = nullptr;  // constant-initialized: safe to install from a static initializer
+}  // namespace
+
+void install_dantzig(DantzigBackend backend) { g_backend = backend; }
+
+DantzigOutcome solve_dantzig(const Problem& problem, const linalg::SymmetricRows& A, std::vector<double>& x) {
+    if (g_backend == nullptr) {
+        x.assign(static_cast<std::size_t>(problem.n), 0.0);
+        return DantzigOutcome::Unavailable;
     }
-    std::vector<double> b(n), lo(n), hi(n);
-    std::vector<int> findex(n, -1);
-    for (int i = 0; i < n; ++i) {
-        b[i] = p.b[i];
-        lo[i] = p.lo[i];
-        hi[i] = p.hi[i];
-        if (p.findex != nullptr) findex[i] = p.findex[i];
-        // ODE's Dantzig asserts lo <= 0 <= hi on every row (an abort() in its checked build).
-        // Validation leaves two kinds of rows to their meaning rather than their values:
-        // the first nub rows are unbounded, and a friction row's lo is -|mu x_f| (hi holds mu).
-        if (i < p.nub) {
-            lo[i] = -dInfinity;
-            hi[i] = dInfinity;
-        } else if (findex[i] >= 0) {
-            lo[i] = -hi[i];
-        }
-    }
-    x.assign(static_cast<std::size_t>(n), 0.0);
-    const int ok = dSolveMLCPDantzig(n, A.data(), x.data(), b.data(), p.nub, lo.data(), hi.data(), findex.data());
-    if (ok == 0) x.assign(static_cast<std::size_t>(n), 0.0);
-    return ok != 0;
+    return g_backend(problem, A, x) ? DantzigOutcome::Solved : DantzigOutcome::Refused;
 }
 
 }  // namespace ode_bpp::baselines

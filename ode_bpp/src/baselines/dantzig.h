@@ -1,4 +1,7 @@
-// ODE's stock Dantzig solver (dSolveMLCPDantzig from the ode-bpp patch) on our Problem.
+// ODE's stock Dantzig as a baseline (Method::Dantzig) and as the last step of solve()'s fallback
+// chain. The core holds only the slot: the ODE glue (ode/dantzig_backend.cpp, in libode_bpp)
+// installs ODE's dSolveMLCPDantzig into it when the library loads, so ode_bpp_core builds, links
+// and runs without ODE, and a program that uses the core alone may install a Dantzig of its own.
 #pragma once
 
 #include <vector>
@@ -8,11 +11,22 @@
 
 namespace ode_bpp::baselines {
 
-/// Copies the problem into ODE's layout (A, the problem's matrix in original order, expanded into
-/// a full n x dPAD(n) buffer, which ODE destroys: O(n^2); contiguous b, lo, hi, findex) and runs
-/// ODE's Dantzig. Problem validated; x: out,
-/// n entries, original space, possibly non-finite (ODE does not check). False when ODE refused
-/// the call (no memory); x is then zero.
-bool solve_dantzig(const Problem& problem, const linalg::SymmetricRows& A, std::vector<double>& x);
+/// A Dantzig solver. problem: validated, original space; A: its matrix as compressed rows
+/// (original order). x: out, n entries, possibly non-finite (ODE does not check). False when the
+/// solver refused the call (e.g. no memory); x is then zero.
+using DantzigBackend = bool (*)(const Problem& problem, const linalg::SymmetricRows& A, std::vector<double>& x);
+
+/// Installs the solver behind solve_dantzig (null: none). Call it before solves start: the slot is
+/// read without synchronization.
+void install_dantzig(DantzigBackend backend);
+
+enum class DantzigOutcome {
+    Solved,       ///< x holds the backend's answer
+    Refused,      ///< the backend refused the call; x is zero
+    Unavailable,  ///< no backend installed (ode_bpp_core without the ODE glue); x is zero
+};
+
+/// Runs the installed backend (see DantzigBackend).
+DantzigOutcome solve_dantzig(const Problem& problem, const linalg::SymmetricRows& A, std::vector<double>& x);
 
 }  // namespace ode_bpp::baselines

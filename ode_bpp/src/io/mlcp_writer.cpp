@@ -6,12 +6,8 @@
 #include <limits>
 #include <new>
 
-#include <ode/ode.h>
-
 #include "io/byte_codec.h"
 #include "linalg/symmetric_rows.h"
-#include "ode/assemble.h"
-#include "ode_bpp/ode.h"
 #include "io/mlcp_layout.h"
 #include "ode_bpp/io.h"
 
@@ -28,12 +24,6 @@ bool fail(std::string* error, const std::string& reason) {
 std::nullopt_t no_file(std::string* error, const std::string& reason) {
     if (error) *error = reason;
     return std::nullopt;
-}
-
-std::string format_double(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
 }
 
 std::optional<std::string> check_sizes(const MlcpFile& f) {
@@ -175,32 +165,6 @@ void copy_blocks(const Problem& p, MlcpFile* f) {
     f->num_bodies = max_body < std::numeric_limits<int>::max() ? std::max(0, max_body + 1) : max_body;
 }
 
-// Joint k owns rows joints[k].row .. +m; consecutive joints must tile 0..m.
-bool capture_blocks(const dMLCP& p, MlcpFile* f, std::string* error) {
-    if (p.nj <= 0 || !p.joints) return true;
-    f->num_bodies = std::max(0, p.nb);
-    for (int k = 0; k < p.nj; ++k) {
-        const dMLCPJoint& joint = p.joints[k];
-        const int expected = k == 0 ? 0 : p.joints[k - 1].row + p.joints[k - 1].m;
-        if (joint.row != expected || joint.m <= 0)
-            return fail(error, "ODE island: joint " + std::to_string(k) + " has rows " + std::to_string(joint.row) +
-                                   " .. +" + std::to_string(joint.m) + ", expected to start at " +
-                                   std::to_string(expected));
-        f->block_row.push_back(joint.row);
-        f->block_body.push_back(joint.body[0]);
-        f->block_body.push_back(joint.body[1]);
-    }
-    f->block_row.push_back(p.joints[p.nj - 1].row + p.joints[p.nj - 1].m);
-    return true;
-}
-
-void capture_metadata(const dMLCP& p, const Metadata& meta, MlcpFile* f) {
-    f->meta = meta;
-    if (!f->meta.find("step_size")) f->meta.set("step_size", format_double(p.stepsize));
-    if (p.world && !f->meta.find("cfm")) f->meta.set("cfm", format_double(dWorldGetCFM(p.world)));
-    if (p.world && !f->meta.find("erp")) f->meta.set("erp", format_double(dWorldGetERP(p.world)));
-}
-
 }  // namespace
 
 std::optional<MlcpFile> copy_problem(const Problem& problem, const Metadata& meta, const double* x_ref,
@@ -221,31 +185,6 @@ std::optional<MlcpFile> copy_problem(const Problem& problem, const Metadata& met
         if (x_ref) f.x_ref.assign(x_ref, x_ref + problem.n);
         f.meta = meta;
         if (auto e = validate(f)) return no_file(error, *e);
-        return f;
-    } catch (const std::bad_alloc&) {
-        return no_file(error, "out of memory");
-    }
-}
-
-std::optional<MlcpFile> capture_from_ode(const dMLCP& p, const Metadata& meta, std::string* error) {
-    try {
-        const bool has_matrix = p.A != nullptr || ode::has_sparse_form(p);
-        if (p.m < 0 || (p.m > 0 && (!has_matrix || !p.pairsbx || !p.pairslh)) || p.skip < p.m)
-            return no_file(error, "ODE island: bad sizes or null arrays");
-        MlcpFile f;
-        f.n = p.m;
-        f.nub = p.nub;
-        island_matrix_lower(p, f.A);
-        mirror_lower(f.A, static_cast<std::size_t>(p.m));
-        for (int i = 0; i < p.m; ++i) {
-            f.b.push_back(p.pairsbx[2 * i]);
-            f.lo.push_back(p.pairslh[2 * i]);
-            f.hi.push_back(p.pairslh[2 * i + 1]);
-        }
-        if (p.findex) f.findex.assign(p.findex, p.findex + p.m);
-        if (!capture_blocks(p, &f, error)) return std::nullopt;
-        capture_metadata(p, meta, &f);
-        if (auto e = validate(f)) return no_file(error, "ODE island: " + *e);
         return f;
     } catch (const std::bad_alloc&) {
         return no_file(error, "out of memory");
@@ -278,13 +217,6 @@ bool write_mlcp(const std::string& path, const Problem& problem, const Metadata&
                 std::string* error) {
     std::string reason;
     const auto file = copy_problem(problem, meta, x_ref, &reason);
-    if (!file) return fail(error, path + ": " + reason);
-    return write_mlcp(path, *file, error);
-}
-
-bool write_mlcp_from_ode(const std::string& path, const dMLCP& problem, const Metadata& meta, std::string* error) {
-    std::string reason;
-    const auto file = capture_from_ode(problem, meta, &reason);
     if (!file) return fail(error, path + ": " + reason);
     return write_mlcp(path, *file, error);
 }

@@ -22,7 +22,7 @@
 #include <utility>
 
 #include "linalg/symmetric_rows.h"
-#include "ode/assemble.h"
+#include "ode/island_view.h"
 #include "ode/ordering_cache.h"
 #include "ode/row_identity.h"
 
@@ -55,40 +55,6 @@ constexpr SolverEntry kSolvers[] = {
     {"bpp", Method::Bpp},           {"bpp-sky", Method::BppSky}, {"bpp-down", Method::BppDown},
     {"bpp-chol", Method::BppChol},  {"pgs", Method::Pgs},
 };
-
-/// Joint structure -> Problem blocks (one block per joint, bodies as ODE's island indices).
-void fill_blocks(const dMLCP& p, std::vector<int>& block_row, std::vector<int>& block_body) {
-    block_row.assign(static_cast<size_t>(p.nj) + 1, p.m);
-    block_body.assign(2 * static_cast<size_t>(p.nj), -1);
-    for (int k = 0; k < p.nj; ++k) {
-        block_row[k] = p.joints[k].row;
-        block_body[2 * k] = p.joints[k].body[0];
-        block_body[2 * k + 1] = p.joints[k].body[1];
-    }
-}
-
-Problem view_of(const dMLCP& p, const std::vector<int>& block_row, const std::vector<int>& block_body,
-                linalg::SymmetricRows& assembled) {
-    Problem q;
-    q.n = p.m;
-    q.A = p.A;
-    q.lda = p.skip;
-    if (ode::has_sparse_form(p)) {
-        ode::assemble_rows(p, assembled);
-        q.sparse = &assembled;
-    }
-    q.b = ConstStrided{p.pairsbx, 2};
-    q.lo = ConstStrided{p.pairslh, 2};
-    q.hi = ConstStrided{p.pairslh + 1, 2};
-    q.findex = p.findex;
-    q.nub = p.nub;
-    if (p.joints != nullptr && p.nj > 0) {
-        q.num_blocks = p.nj;
-        q.block_row = block_row.data();
-        q.block_body = block_body.data();
-    }
-    return q;
-}
 
 /// True when some row can be tight (bounded, or a friction row): only then does an index set of
 /// an earlier step say anything about this one. A chain of ball joints has none; its rows are
@@ -127,18 +93,16 @@ const char* fallback_name(const Result& r) {
 
 dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
     const Method method = *static_cast<const Method*>(userdata);
-    thread_local std::vector<int> block_row, block_body;
     thread_local std::vector<RowKey> keys;
     thread_local OrderingCache::Signature structure;
-    thread_local linalg::SymmetricRows assembled;
+    thread_local ode::IslandView view;
     if (problem->joints != nullptr) {
-        fill_blocks(*problem, block_row, block_body);
         row_keys(*problem, keys);
         if (!keys.empty()) OrderingCache::signature(*problem, keys.front(), structure);
     }
     const bool known_rows = problem->joints != nullptr && !keys.empty();
     const bool use_memory = known_rows && has_bounded_rows(*problem);
-    const Problem q = view_of(*problem, block_row, block_body, assembled);
+    const Problem q = view.of(*problem);
 
     thread_local Options options;  // its vectors keep their capacity from island to island
     bool warm = false;

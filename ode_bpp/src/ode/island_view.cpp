@@ -1,0 +1,44 @@
+#include "ode/island_view.h"
+
+#include "ode/assemble.h"
+
+namespace ode_bpp::ode {
+
+Problem IslandView::of(const dMLCP& p) {
+    Problem q;
+    q.n = p.m;
+    q.A = p.A;
+    q.lda = p.skip;
+    if (has_sparse_form(p)) {
+        assemble_rows(p, assembled_);
+        q.sparse = &assembled_;
+    }
+    q.b = ConstStrided{p.pairsbx, 2};
+    q.lo = ConstStrided{p.pairslh, 2};
+    q.hi = ConstStrided{p.pairslh + 1, 2};
+    q.findex = p.findex;
+    q.nub = p.nub;
+    if (p.joints != nullptr && p.nj > 0) {
+        block_row_.assign(static_cast<std::size_t>(p.nj) + 1, p.m);
+        block_body_.resize(2 * static_cast<std::size_t>(p.nj));
+        for (int k = 0; k < p.nj; ++k) {
+            block_row_[k] = p.joints[k].row;
+            block_body_[2 * k] = p.joints[k].body[0];
+            block_body_[2 * k + 1] = p.joints[k].body[1];
+        }
+        q.num_blocks = p.nj;
+        q.block_row = block_row_.data();
+        q.block_body = block_body_.data();
+    }
+    return q;
+}
+
+int first_untiled_joint(const dMLCP& p) {
+    for (int k = 0; k < p.nj; ++k) {
+        const int expected = k == 0 ? 0 : p.joints[k - 1].row + p.joints[k - 1].m;
+        if (p.joints[k].row != expected || p.joints[k].m <= 0) return k;
+    }
+    return -1;
+}
+
+}  // namespace ode_bpp::ode

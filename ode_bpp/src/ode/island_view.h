@@ -1,0 +1,35 @@
+// One island of the patched world step (<ode/mlcp.h>) as a Problem (solver.h): the single view
+// that the solver hook and file capture share.
+//
+// Index space: ODE's island row order (original). b, lo and hi are read in place from ODE's
+// interleaved pairs (b = pairsbx[2i], lo = pairslh[2i], hi = pairslh[2i+1]); joint k becomes row
+// block k with its two bodies; A is ODE's dense lower triangle (row stride skip) or, in the sparse
+// form, assembled from J, J M^-1 and the CFM (ode/assemble.h).
+#pragma once
+
+#include <ode/mlcp.h>
+
+#include <vector>
+
+#include "linalg/symmetric_rows.h"
+#include "ode_bpp/solver.h"
+
+namespace ode_bpp::ode {
+
+/// The storage a view needs beyond ODE's arrays; reused from island to island.
+class IslandView {
+public:
+    /// The view of `island`, valid while this object and the island's arrays live (it points
+    /// into both). O(entries of A) in the sparse form, O(rows) otherwise.
+    Problem of(const dMLCP& island);
+
+private:
+    std::vector<int> block_row_, block_body_;
+    linalg::SymmetricRows assembled_;
+};
+
+/// The first joint whose rows do not continue where the previous joint's ended (joints must tile
+/// rows 0 .. m-1 in order, each with m > 0), or -1 when they tile.
+int first_untiled_joint(const dMLCP& island);
+
+}  // namespace ode_bpp::ode

@@ -367,7 +367,7 @@ void write_row(std::ostream& csv, const ode_bpp::MlcpFile& file, const std::stri
         << median(m.times_us) << ',' << r.pivots << ',' << r.murty_pivots
         << ',' << r.tight << ',' << r.natural_residual << ',' << r.relative_natural_residual << ','
         << r.scaled_natural_residual << ',' << r.friction_error << ',' << m.factor_error << ','
-        << (r.fallback.empty() ? "-" : r.fallback) << ',' << m.limit_us << ','
+        << (r.fallback == ode_bpp::Fallback::None ? "-" : ode_bpp::to_string(r.fallback)) << ',' << m.limit_us << ','
         << (m.limit_status.empty() ? "-" : m.limit_status) << ',' << m.nonfriction_residual << '\n';
 }
 

@@ -96,7 +96,7 @@ void observe_island(const dMLCP* problem, const dMLCPIslandStats* stats, void* u
     const Result last = last_island_result(problem->world);
     r.max_iterations += last.status == Status::MaxIterations && last.method != Method::Pgs ? 1 : 0;
     r.not_spd += last.status == Status::NotSpd ? 1 : 0;
-    r.regularized += last.fallback.find("regularized") != std::string::npos ? 1 : 0;
+    r.regularized += last.fallback == Fallback::Regularized || last.fallback == Fallback::RegularizedDantzig ? 1 : 0;
     r.friction_not_consistent += last.status == Status::FrictionNotConsistent ? 1 : 0;
     r.murty_pivots += last.murty_pivots;
     r.rescues += last.rescues;

@@ -114,7 +114,7 @@ void apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Opt
         if (outcome == baselines::DantzigOutcome::Solved && all_finite(xd)) {
             x = std::move(xd);
             r.status = Status::FallbackUsed;
-            r.fallback = r.fallback.empty() ? "dantzig" : r.fallback + "+dantzig";
+            r.fallback = r.fallback == Fallback::Regularized ? Fallback::RegularizedDantzig : Fallback::Dantzig;
             r.message = reason + "; answered by ODE's Dantzig";
             r.states = states_of(p, x);
             r.tight = count_tight(r.states);
@@ -191,6 +191,16 @@ std::vector<std::string> method_names() {
     std::vector<std::string> names;
     for (const MethodName& entry : kMethods) names.emplace_back(entry.name);
     return names;
+}
+
+const char* to_string(Fallback f) {
+    switch (f) {
+        case Fallback::None: return "none";
+        case Fallback::Regularized: return "regularized";
+        case Fallback::Dantzig: return "dantzig";
+        case Fallback::RegularizedDantzig: return "regularized+dantzig";
+    }
+    return "unknown";
 }
 
 const char* to_string(FrictionMode f) { return f == FrictionMode::Frozen ? "frozen" : "consistent"; }

@@ -96,6 +96,16 @@ const char* to_string(Status s);
 /// True when x is a usable answer (Converged, FallbackUsed, or an inexact but finite iterate).
 bool is_usable(Status s);
 
+/// The fallback an answer came through (solver.cpp's chain), if any.
+enum class Fallback : std::int8_t {
+    None,                ///< the method's own answer
+    Regularized,         ///< solved on A + delta I after a Cholesky breakdown (Result::regularization)
+    Dantzig,             ///< the method failed; ODE's Dantzig answered
+    RegularizedDantzig,  ///< regularization did not rescue the method either; ODE's Dantzig answered
+};
+/// "none", "regularized", "dantzig", "regularized+dantzig".
+const char* to_string(Fallback f);
+
 /// Per-row state of an index set: the paper's F, T_lo and T_hi.
 enum class RowState : std::int8_t { Free = 0, AtLo = 1, AtHi = 2 };
 
@@ -189,7 +199,7 @@ struct Result {
     int lemke_pivots = 0;
     std::vector<int> tight_per_step;  ///< |T| at each pivot step
     int tight = 0;                ///< |T| at the answer
-    std::string fallback;         ///< fallback taken, empty if none ("regularized", "dantzig", ...)
+    Fallback fallback = Fallback::None;
     /// Natural residual ||x - clamp(x - w, lo(x), hi(x))||_inf with friction bounds taken from
     /// the returned normal impulses, and the same divided by max(1, ||b||_inf).
     double natural_residual = 0;
@@ -208,7 +218,7 @@ struct Result {
     double scaled_natural_residual = 0;
     /// Deleted factors rejected by the loss-of-accuracy check and replaced by a refactorization.
     int accuracy_refactors = 0;
-    /// delta of the A + delta*I the answer solves (0 unless fallback is "regularized").
+    /// delta of the A + delta*I the answer solves (0 unless the fallback was Regularized).
     double regularization = 0;
     /// Fixed-bound solves that the rescue continuation finished (Options::rescue_after).
     int rescues = 0;

@@ -18,7 +18,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <string>
 #include <unordered_map>
+#include <vector>
 #include <utility>
 
 #include "linalg/symmetric_rows.h"
@@ -47,14 +49,24 @@ HookState& hook() {
     return *state;
 }
 
-struct SolverEntry {
-    const char* name;
+/// ODE's name and our Method of every solver we register: every method of solver.h but dantzig,
+/// which ODE registers itself. Userdata of the registrations points at `method` (never moves).
+struct Registration {
+    std::string name;
     Method method;
 };
-constexpr SolverEntry kSolvers[] = {
-    {"bpp", Method::Bpp},           {"bpp-sky", Method::BppSky}, {"bpp-down", Method::BppDown},
-    {"bpp-chol", Method::BppChol},  {"pgs", Method::Pgs},
-};
+
+const std::vector<Registration>& registrations() {
+    static const std::vector<Registration>* table = [] {
+        auto* t = new std::vector<Registration>();  // never destroyed: ODE may step during exit
+        for (const std::string& name : method_names()) {
+            const Method m = *method_from_string(name);
+            if (m != Method::Dantzig) t->push_back({name, m});
+        }
+        return t;
+    }();
+    return *table;
+}
 
 /// True when some row can be tight (bounded, or a friction row): only then does an index set of
 /// an earlier step say anything about this one. A chain of ball joints has none; its rows are
@@ -65,12 +77,6 @@ bool has_bounded_rows(const dMLCP& p) {
         if (p.pairslh[2 * i] > -dInfinity || p.pairslh[2 * i + 1] < dInfinity) return true;
     }
     return false;
-}
-
-int count_tight(const std::vector<RowState>& states) {
-    int tight = 0;
-    for (RowState s : states) tight += s != RowState::Free ? 1 : 0;
-    return tight;
 }
 
 dMLCPStatus to_ode_status(const Result& r) {
@@ -86,9 +92,7 @@ dMLCPStatus to_ode_status(const Result& r) {
 
 const char* fallback_name(const Result& r) {
     if (r.status == Status::FrictionNotConsistent) return "friction-not-consistent";
-    if (r.fallback == "dantzig") return "dantzig";
-    if (r.fallback == "regularized") return "regularized";
-    return r.fallback.empty() ? nullptr : "other";
+    return r.fallback == Fallback::None ? nullptr : to_string(r.fallback);
 }
 
 dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
@@ -123,8 +127,8 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
 
     const dMLCPStatus status = to_ode_status(r);
     stats->pivots = r.pivots;
-    stats->tight = count_tight(r.states);
-    stats->fallbacks = r.fallback.empty() ? 0 : 1;
+    stats->tight = r.tight;
+    stats->fallbacks = r.fallback == Fallback::None ? 0 : 1;
     stats->fallback = fallback_name(r);
 
     std::lock_guard<std::mutex> g(hook().lock);
@@ -142,15 +146,11 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     return status;
 }
 
-Method g_methods[std::size(kSolvers)];
-Method g_dense_form_methods[std::size(kSolvers)];  // stable userdata of ode_bpp_register_dense_form
-
 int register_all() {
     int registered = 0;
-    for (size_t i = 0; i < std::size(kSolvers); ++i) {
-        g_methods[i] = kSolvers[i].method;
-        registered += dRegisterMLCPSolverEx(kSolvers[i].name, &solve_island, &g_methods[i], dMLCP_API_VERSION, dMLCP_SPARSE);
-    }
+    for (const Registration& r : registrations())
+        registered += dRegisterMLCPSolverEx(r.name.c_str(), &solve_island, const_cast<Method*>(&r.method),
+                                            dMLCP_API_VERSION, dMLCP_SPARSE);
     return registered;
 }
 
@@ -227,12 +227,10 @@ extern "C" int ode_bpp_register_solvers(void) { return ode_bpp::register_all(); 
 
 extern "C" int ode_bpp_register_dense_form(const char* method, const char* as_name) {
     if (method == nullptr || as_name == nullptr) return 0;
-    for (std::size_t i = 0; i < std::size(ode_bpp::kSolvers); ++i) {
-        if (std::strcmp(ode_bpp::kSolvers[i].name, method) != 0) continue;
-        ode_bpp::g_dense_form_methods[i] = ode_bpp::kSolvers[i].method;
-        return dRegisterMLCPSolverEx(as_name, &ode_bpp::solve_island, &ode_bpp::g_dense_form_methods[i],
-                                     dMLCP_API_VERSION, 0);
-    }
+    for (const ode_bpp::Registration& r : ode_bpp::registrations())
+        if (r.name == method)
+            return dRegisterMLCPSolverEx(as_name, &ode_bpp::solve_island, const_cast<ode_bpp::Method*>(&r.method),
+                                         dMLCP_API_VERSION, 0);
     return 0;
 }
 

@@ -547,7 +547,7 @@ private:
             r.tight += states[i] != RowState::Free;
         }
         r.regularization = shift_;
-        if (shift_ > 0) r.fallback = "regularized";
+        if (shift_ > 0) r.fallback = Fallback::Regularized;
         r.status = overall_status();
         r.message = status_message();
         if (o_.compute_factor_error) r.factor_error = solver_->factor_error(tight_set(states));

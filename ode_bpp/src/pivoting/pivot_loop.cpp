@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "pivoting/classify_row.h"
 #include "pivoting/friction_link.h"
 
 namespace ode_bpp::pivoting {
@@ -102,8 +103,7 @@ private:
         bool any = false;
         for (int i = 0; i < n_; ++i) {
             if (pinned(i)) continue;
-            const double wrong = states[i] == RowState::AtHi ? w_[i] : states[i] == RowState::AtLo ? -w_[i] : 0.0;
-            if (wrong > limit * scale_[i]) {
+            if (wrong_sign(states[i], w_[i]) > limit * scale_[i]) {
                 states[i] = RowState::Free;
                 any = true;
             }
@@ -319,35 +319,17 @@ private:
     /// the classification tolerance keeps the pivoting decisions unaffected by the factor.
     double accuracy_limit() const { return std::max(0.1 * settings_.tolerance, 100.0 * n_ * kEps); }
 
-    /// Eq. 4 with per-row tolerances: a w-tolerance tol * (|A||x| + |b|)_i and the matching
-    /// x-tolerance divided by the diagonal (A_ii x_i is bounded by the same sum).
+    /// Eq. 4 row by row (classify_row.h).
     const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
         Infeasibility& inf = ws_.inf;
         inf.clear();
         for (int i = 0; i < n_; ++i) {
-            if (pinned(i)) continue;
-            const double diag = lcp_.A->diag(i) + lcp_.shift;
-            const double w_tol = settings_.tolerance * scale_[i];
-            const double x_tol = w_tol / diag;
-            double excess = 0;
-            RowState to = states[i];
-            switch (states[i]) {
-                case RowState::Free:
-                    if (x[i] < lo_[i] - x_tol) { excess = (lo_[i] - x[i]) * diag; to = RowState::AtLo; }
-                    else if (x[i] > hi_[i] + x_tol) { excess = (x[i] - hi_[i]) * diag; to = RowState::AtHi; }
-                    break;
-                case RowState::AtLo:
-                    if (w_[i] < -w_tol) { excess = -w_[i]; to = RowState::Free; }
-                    break;
-                case RowState::AtHi:
-                    if (w_[i] > w_tol) { excess = w_[i]; to = RowState::Free; }
-                    break;
-            }
-            if (to != states[i]) {
-                inf.rows.push_back(i);
-                inf.flip_to.push_back(to);
-                inf.violation += excess;
-            }
+            const RowVerdict v = classify_row(states[i], x[i], w_[i], lo_[i], hi_[i], lcp_.A->diag(i) + lcp_.shift,
+                                              scale_[i], settings_.tolerance);
+            if (v.to == states[i]) continue;
+            inf.rows.push_back(i);
+            inf.flip_to.push_back(v.to);
+            inf.violation += v.excess;
         }
         return inf;
     }

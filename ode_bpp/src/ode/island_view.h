@@ -21,9 +21,9 @@ class IslandView {
 public:
     /// The view of `island`, valid while this object and the island's arrays live (it points
     /// into both). An island in the sparse form is assembled (ode/assemble.h): into compressed
-    /// rows, O(entries of A); or, when it has at most dense_rows rows, into a dense lower triangle
-    /// for the small-island path (pivoting/small_island.h), O(m^2). O(rows) otherwise.
-    Problem of(const dMLCP& island, int dense_rows = 0);
+    /// rows, O(entries of A); or, with dense_lower, into a dense lower triangle for the
+    /// small-island path (pivoting/small_island.h), O(m^2). O(rows) otherwise.
+    Problem of(const dMLCP& island, bool dense_lower = false);
 
 private:
     std::vector<int> block_row_, block_body_;

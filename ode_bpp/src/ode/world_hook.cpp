@@ -121,7 +121,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     }
     options.method = method;
     if (!warm) options.warm_start.clear();
-    const Problem q = view.of(*problem, pivoting::is_small_island(problem->m, options) ? problem->m : 0);
+    const Problem q = view.of(*problem, pivoting::is_small_island(problem->m, options));
 
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
     Result r = solve(q, options, Strided{problem->pairsbx + 1, 2});

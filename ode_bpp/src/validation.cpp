@@ -1,9 +1,11 @@
 #include "ode_bpp/validation.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "linalg/symmetric_rows.h"
+#include "structure_rules.h"
 
 namespace ode_bpp {
 
@@ -79,34 +81,28 @@ ValidationResult check_bounds(const Problem& p) {
     return {};
 }
 
+/// structure_rules.h's findex rules (shared with the file format), then the ones that need the
+/// values: no friction row inside the first nub rows, and mu = hi_i >= 0.
 ValidationResult check_findex(const Problem& p) {
     if (p.findex == nullptr) return {};
+    if (auto issue = ode_bpp::check_findex(p.findex, p.n)) return invalid_row(static_cast<int>(issue->index), issue->reason);
     for (int i = 0; i < p.n; ++i) {
-        const int f = p.findex[i];
-        if (f < -1 || f >= p.n)
-            return invalid_row(i, "findex (" + std::to_string(f) + ") outside [-1, n)");
-        if (f < 0) continue;
-        if (f == i) return invalid_row(i, "findex points at the row itself");
-        if (p.findex[f] >= 0)
-            return invalid_row(i, "findex points at row " + std::to_string(f) + ", itself a friction row");
+        if (p.findex[i] < 0) continue;
         if (i < p.nub) return invalid_row(i, "friction row inside the first nub rows");
         if (!(p.hi[i] >= 0)) return invalid_row(i, describe("friction coefficient mu = hi", p.hi[i]) + " is not >= 0");
     }
     return {};
 }
 
+/// structure_rules.h's block rules (shared with the file format); bodies only need to be >= -1,
+/// as a Problem does not say how many there are.
 ValidationResult check_blocks(const Problem& p) {
     if (p.num_blocks < 0) return invalid("num_blocks = " + std::to_string(p.num_blocks) + " < 0");
     if (p.num_blocks == 0) return {};
     if (p.block_row == nullptr || p.block_body == nullptr) return invalid("num_blocks > 0 but block_row or block_body is null");
-    if (p.block_row[0] != 0 || p.block_row[p.num_blocks] != p.n)
-        return invalid("block_row must run from 0 to n");
-    for (int k = 0; k < p.num_blocks; ++k) {
-        if (p.block_row[k + 1] < p.block_row[k])
-            return invalid("block_row decreases at block " + std::to_string(k));
-        if (p.block_body[2 * k] < -1 || p.block_body[2 * k + 1] < -1)
-            return invalid("block " + std::to_string(k) + " has a body index < -1");
-    }
+    if (auto issue = check_block_row(p.block_row, p.num_blocks, p.n)) return invalid(issue->reason);
+    if (auto issue = check_block_body(p.block_body, p.num_blocks, std::numeric_limits<int>::max()))
+        return invalid(issue->reason);
     return {};
 }
 

@@ -200,6 +200,13 @@ TEST(IoCorruption, BadFindex) {
     io_test::put_i32(bad, at + 4 * 3, 3);
     io_test::reseal(bad);
     expect_error(bad, at + 4 * 3, "findex[3] refers to its own row");
+    // row 3 is a friction row (of normal 2): a friction row's normal cannot be one, in a file as
+    // in validate() (structure_rules.h)
+    ASSERT_EQ(s.file.findex[3], 2);
+    bad = s.bytes;
+    io_test::put_i32(bad, at + 4 * 4, 3);
+    io_test::reseal(bad);
+    expect_error(bad, at + 4 * 4, "findex[4] = 3 refers to a friction row");
 }
 
 TEST(IoCorruption, BadBlocks) {

@@ -112,7 +112,7 @@ TEST(Validation, FindexOutOfRange) {
 TEST(Validation, FindexPointingAtItself) {
     auto p = good_problem();
     p.findex[8] = 8;
-    EXPECT_NE(expect_invalid(p).find("itself"), std::string::npos);
+    EXPECT_NE(expect_invalid(p).find("its own row"), std::string::npos);
 }
 
 TEST(Validation, FindexPointingAtAFrictionRow) {

@@ -24,7 +24,8 @@ struct ValidationResult {
 ///  - findex (if given): -1 or in [0, n), never the row itself, never a friction row (a normal
 ///    cannot itself be a friction row), never a friction row inside the first nub rows, and the
 ///    friction coefficient hi_i = mu_i >= 0;
-///  - block structure (if num_blocks > 0): block_row non-decreasing from 0 to n, bodies >= -1.
+///  - block structure (if num_blocks > 0): block_row strictly increasing from 0 to n, bodies >= -1
+///    (the findex and block rules are the file format's too: structure_rules.h).
 /// Reads only; O(n^2) for a dense A's lower triangle, O(non-zeros) for a sparse A.
 ValidationResult validate(const Problem& problem);
 

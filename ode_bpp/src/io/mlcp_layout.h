@@ -61,17 +61,5 @@ inline std::uint64_t triangle_entries(std::uint64_t n) { return n * (n + 1) / 2;
 
 Layout layout_of(const Header& h);
 
-/// A structural defect at entry index of some array.
-struct Issue {
-    std::size_t index = 0;
-    std::string reason;
-};
-
-/// findex[i] must be -1 or a row j != i in [0, n).
-std::optional<Issue> check_findex(const int* findex, int n);
-/// block_row: num_blocks + 1 entries, 0 first, n last, strictly increasing (no empty block).
-std::optional<Issue> check_block_row(const int* block_row, int num_blocks, int n);
-/// block_body: 2 num_blocks entries, each -1 (static environment) or in [0, num_bodies).
-std::optional<Issue> check_block_body(const int* block_body, int num_blocks, int num_bodies);
 
 }  // namespace ode_bpp::io

@@ -8,6 +8,7 @@
 
 #include "io/byte_codec.h"
 #include "io/mlcp_layout.h"
+#include "structure_rules.h"
 #include "ode_bpp/io.h"
 
 namespace ode_bpp {
@@ -176,15 +177,15 @@ Check decode_body(const std::uint8_t* data, const Header& h, const Layout& l, Ml
     f->hi = load_doubles(data + l.hi, h.n);
     if (h.flags & flag::kFindex) {
         f->findex = load_ints(data + l.findex, h.n);
-        if (auto issue = io::check_findex(f->findex.data(), n)) return Error{l.findex + 4 * issue->index, issue->reason};
+        if (auto issue = check_findex(f->findex.data(), n)) return Error{l.findex + 4 * issue->index, issue->reason};
     }
     if (h.flags & flag::kBlocks) {
         f->num_bodies = static_cast<int>(h.num_bodies);
         f->block_row = load_ints(data + l.block_row, h.num_blocks + std::size_t{1});
         f->block_body = load_ints(data + l.block_body, 2 * std::size_t{h.num_blocks});
-        if (auto issue = io::check_block_row(f->block_row.data(), num_blocks, n))
+        if (auto issue = check_block_row(f->block_row.data(), num_blocks, n))
             return Error{l.block_row + 4 * issue->index, issue->reason};
-        if (auto issue = io::check_block_body(f->block_body.data(), num_blocks, f->num_bodies))
+        if (auto issue = check_block_body(f->block_body.data(), num_blocks, f->num_bodies))
             return Error{l.block_body + 4 * issue->index, issue->reason};
     }
     if (h.flags & flag::kReferenceX) f->x_ref = load_doubles(data + l.x, h.n);

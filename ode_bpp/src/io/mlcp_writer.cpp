@@ -9,6 +9,7 @@
 #include "io/byte_codec.h"
 #include "linalg/symmetric_rows.h"
 #include "io/mlcp_layout.h"
+#include "structure_rules.h"
 #include "ode_bpp/io.h"
 
 namespace ode_bpp {
@@ -60,10 +61,10 @@ std::optional<std::string> check_metadata(const Metadata& meta) {
 std::optional<std::string> validate(const MlcpFile& f) {
     if (auto e = check_sizes(f)) return e;
     if (!f.findex.empty())
-        if (auto issue = io::check_findex(f.findex.data(), f.n)) return issue->reason;
+        if (auto issue = check_findex(f.findex.data(), f.n)) return issue->reason;
     if (!f.block_row.empty()) {
-        if (auto issue = io::check_block_row(f.block_row.data(), f.num_blocks(), f.n)) return issue->reason;
-        if (auto issue = io::check_block_body(f.block_body.data(), f.num_blocks(), f.num_bodies))
+        if (auto issue = check_block_row(f.block_row.data(), f.num_blocks(), f.n)) return issue->reason;
+        if (auto issue = check_block_body(f.block_body.data(), f.num_blocks(), f.num_bodies))
             return issue->reason;
     }
     return check_metadata(f.meta);

@@ -130,7 +130,7 @@ TEST(FrictionLcp, LemkesAnswerSolvesTheMlcpWithBoundsFromItsOwnNormals) {
         const auto p = problems::random_boxed_mlcp(40, 4, 8, 1e4, seed);
         DriverLcp s(p);
         std::string why;
-        const auto lcp = FrictionLcp::build(s.lcp, {s.rows, s.normals, s.mu}, why);
+        const auto lcp = FrictionLcp::build(s.lcp, s.friction.view(), why);
         ASSERT_TRUE(lcp.has_value()) << why;
         const int N = static_cast<int>(lcp->q().size());
         const LemkeSolution sol = solve_lemke(lcp->M(), lcp->q(), spread_covering_vector(N, 0), 10 * N);
@@ -159,7 +159,7 @@ TEST(FrictionLcp, FrictionOnAnUnboundedNormalIsOutsideTheFormulation) {
     p.findex[5] = 0;  // row 0 is unbounded: |x_0| could be any sign
     DriverLcp s(p);
     std::string why;
-    EXPECT_FALSE(FrictionLcp::build(s.lcp, {s.rows, s.normals, s.mu}, why).has_value());
+    EXPECT_FALSE(FrictionLcp::build(s.lcp, s.friction.view(), why).has_value());
     EXPECT_NE(why.find("normal"), std::string::npos) << why;
 }
 

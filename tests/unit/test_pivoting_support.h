@@ -2,36 +2,26 @@
 #pragma once
 
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 #include "ode_bpp/solver.h"
 #include "pivoting/boxed_lcp.h"
+#include "pivoting/friction_set.h"
 #include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting::test {
 
-/// The driver's BoxedLcp of a problem in its own order (no permutation, fixed bounds as given),
-/// with its friction rows, their normals and mu listed for the friction LCP.
+/// The driver's BoxedLcp of a problem in its own order (build_boxed_lcp with the identity),
+/// with its friction rows, their normals and mu.
 struct DriverLcp {
     linalg::SymmetricRows A;
     BoxedLcp lcp;
-    std::vector<int> rows, normals;
-    std::vector<double> mu;
+    FrictionSet friction;
     explicit DriverLcp(const Problem& p) : A(p, {}) {
-        lcp.A = &A;
-        for (int i = 0; i < p.n; ++i) {
-            const bool unbounded = i < p.nub || (p.lo[i] == -INFINITY && p.hi[i] == INFINITY);
-            lcp.b.push_back(p.b[i]);
-            lcp.lo.push_back(unbounded ? -INFINITY : p.lo[i]);
-            lcp.hi.push_back(unbounded ? INFINITY : p.hi[i]);
-            lcp.always_free.push_back(unbounded);
-            if (p.findex != nullptr && p.findex[i] >= 0) {
-                rows.push_back(i);
-                normals.push_back(p.findex[i]);
-                mu.push_back(p.hi[i]);
-                lcp.always_free.back() = 0;
-            }
-        }
+        std::vector<int> identity(static_cast<std::size_t>(p.n));
+        std::iota(identity.begin(), identity.end(), 0);
+        build_boxed_lcp(p, A, identity, lcp, friction);
     }
 };
 

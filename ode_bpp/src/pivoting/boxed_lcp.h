@@ -35,6 +35,16 @@ struct BoxedLcp {
     bool is_pinned(int i) const { return lo[i] == hi[i]; }
 };
 
+struct FrictionSet;
+
+/// The BoxedLcp of a validated problem in the permutation perm (perm[new] = old, n entries; the
+/// identity for the caller's order), on Ap = A permuted (lcp.A points at it): b, lo, hi
+/// permuted, rows below nub unbounded, shift 0, no moving bounds, murty_rank = perm (every
+/// strategy pivots alike); friction (out): its friction rows with their normals and mu (their
+/// lo/hi in lcp are the problem's until a friction policy sets them).
+void build_boxed_lcp(const Problem& problem, const linalg::SymmetricRows& Ap, const std::vector<int>& perm,
+                     BoxedLcp& lcp, FrictionSet& friction);
+
 /// The value a tight row takes: lo for AtLo, hi for AtHi (paper Alg. 1 lines 6-7).
 inline double tight_value(const BoxedLcp& lcp, int i, RowState s) { return s == RowState::AtLo ? lcp.lo[i] : lcp.hi[i]; }
 

@@ -22,8 +22,6 @@ namespace ode_bpp::pivoting {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 bool is_identity(const std::vector<int>& perm) {
     for (std::size_t i = 0; i < perm.size(); ++i)
         if (perm[i] != static_cast<int>(i)) return false;
@@ -62,38 +60,6 @@ void order(const Problem& p, const linalg::SymmetricRows& A, const Options& o, M
     if (!is_identity(q.perm)) {
         A.permute_into(q.perm, q.permuted_A);
         q.A = &q.permuted_A;
-    }
-}
-
-/// b, lo, hi in the permuted space; rows below nub unbounded; friction rows (their lo/hi are
-/// set by the friction policy) with their normals and coefficients.
-void build_lcp(const Problem& p, PermutedProblem& q) {
-    const int n = p.n;
-    const std::vector<int> to_new = linalg::inverse_permutation(q.perm);
-    BoxedLcp& lcp = q.lcp;
-    lcp.A = q.A;
-    lcp.shift = 0;
-    lcp.b.resize(n);
-    lcp.lo.resize(n);
-    lcp.hi.resize(n);
-    lcp.always_free.assign(static_cast<std::size_t>(n), 0);
-    lcp.murty_rank = q.perm;  // the caller's order: every strategy makes the same pivots
-    lcp.friction_normal.clear();
-    lcp.friction_mu.clear();
-    q.friction.clear();
-    for (int i = 0; i < n; ++i) {
-        const int old = q.perm[i];
-        lcp.b[i] = p.b[old];
-        const bool unbounded = old < p.nub;
-        lcp.lo[i] = unbounded ? -kInf : p.lo[old];
-        lcp.hi[i] = unbounded ? kInf : p.hi[old];
-        lcp.always_free[i] = lcp.lo[i] == -kInf && lcp.hi[i] == kInf;
-        if (p.findex != nullptr && p.findex[old] >= 0) {
-            q.friction.rows.push_back(i);
-            q.friction.normal_of.push_back(to_new[p.findex[old]]);
-            q.friction.mu.push_back(p.hi[old]);
-            lcp.always_free[i] = 0;
-        }
     }
 }
 
@@ -181,7 +147,7 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
         r.message = std::string("method ") + to_string(options.method) + " is not a BPP method or is not available";
         return r;
     }
-    build_lcp(problem, q);
+    build_boxed_lcp(problem, *q.A, q.perm, q.lcp, q.friction);
     std::vector<RowState> states = permuted_warm_start(problem, options, q.perm);
     std::vector<double> xp;
     PivotCounters counters;

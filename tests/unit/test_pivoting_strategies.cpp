@@ -8,7 +8,7 @@
 #include <random>
 
 #include "pivoting/free_solver.h"
-#include "pivoting/ordering_choice.h"
+#include "ordering/ordering_choice.h"
 #include "pivoting/strategies.h"
 #include "linalg/symmetric_rows.h"
 #include "problems/generators.h"
@@ -28,7 +28,7 @@ struct Permuted {
 Permuted permuted_for(Method m, problems::OwnedProblem owned) {
     const Problem p = owned.view();
     const linalg::SymmetricRows A(p, {});
-    const std::vector<int> perm = choose_ordering(m, p, A, {});
+    const std::vector<int> perm = ordering::choose_ordering(m, p, A, {});
     return {std::move(owned), A.permuted(perm)};
 }
 

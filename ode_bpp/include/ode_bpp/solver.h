@@ -152,7 +152,7 @@ struct Options {
     std::vector<RowState> warm_start;
     /// Bpp with a warm start: also consider orderings with the warm start's tight rows last
     /// (deleting them then touches few columns), priced by the cost model against the envelope
-    /// they may widen (pivoting/ordering_choice.h). False: Cuthill-McKee or its reverse only.
+    /// they may widen (ordering/ordering_choice.h). False: Cuthill-McKee or its reverse only.
     bool order_tight_last = true;
     /// Bpp and BppSky: the symmetric row permutation to factor in (perm[new] = old, n entries),
     /// e.g. Result::ordering of the same island's previous step, skipping the ordering; empty, or

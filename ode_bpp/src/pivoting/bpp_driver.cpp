@@ -14,7 +14,7 @@
 #include "pivoting/free_solver.h"
 #include "pivoting/friction_policy.h"
 #include "pivoting/friction_set.h"
-#include "pivoting/ordering_choice.h"
+#include "ordering/ordering_choice.h"
 #include "pivoting/tuning.h"
 #include "linalg/symmetric_rows.h"
 
@@ -51,11 +51,11 @@ Method strategy_of(const Problem& p, const Options& o) {
 }
 
 /// The symmetric permutation to factor in: the given one where the strategy orders and it is
-/// valid (the hook passes the previous step's), else pivoting/ordering_choice.h's.
+/// valid (the hook passes the previous step's), else ordering/ordering_choice.h's.
 void order(const Problem& p, const linalg::SymmetricRows& A, const Options& o, Method strategy, PermutedProblem& q) {
     const bool given = (strategy == Method::Bpp || strategy == Method::BppSky) && ordering::is_permutation(o.ordering, p.n);
     static const std::vector<RowState> kNoHint;
-    q.perm = given ? o.ordering : choose_ordering(strategy, p, A, o.order_tight_last ? o.warm_start : kNoHint);
+    q.perm = given ? o.ordering : ordering::choose_ordering(strategy, p, A, o.order_tight_last ? o.warm_start : kNoHint);
     q.A = &A;
     if (!is_identity(q.perm)) {
         A.permute_into(q.perm, q.permuted_A);

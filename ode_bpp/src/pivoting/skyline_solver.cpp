@@ -16,7 +16,7 @@
 #include "linalg/skyline.h"
 #include "linalg/skyline_cholesky.h"
 #include "linalg/skyline_solve.h"
-#include "pivoting/step_cost.h"
+#include "linalg/step_cost.h"
 #include "pivoting/strategies.h"
 
 namespace ode_bpp::pivoting {
@@ -109,7 +109,7 @@ private:
     /// column (docs/maths.md: deletion costs ~ |T| (m - i) height, refactoring ~ m height^2).
     bool prefers_refactor() const {
         if (variant_ != SkylineVariant::CostModel) return false;
-        return refactor_price(cost_, tight_rows_, restore_from()) < deletion_price(cost_, tight_rows_, restore_from());
+        return linalg::refactor_price(cost_, tight_rows_, restore_from()) < linalg::deletion_price(cost_, tight_rows_, restore_from());
     }
 
     /// Alg. 2 lines 7-11: L = L0 (BppDown: all of it, as the paper copies; else only the tail

@@ -1,14 +1,14 @@
-// Which ordering each BPP method factors in (pivoting/ordering_choice.h).
+// Which ordering each BPP method factors in (ordering/ordering_choice.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
 #include "linalg/envelope.h"
 #include "ordering/order_rows.h"
-#include "pivoting/ordering_choice.h"
+#include "ordering/ordering_choice.h"
 #include "problems/generators.h"
 
-namespace ode_bpp::pivoting {
+namespace ode_bpp::ordering {
 namespace {
 
 std::ptrdiff_t envelope(const linalg::SymmetricRows& A, const std::vector<int>& perm) {
@@ -88,4 +88,4 @@ TEST(PivotingOrdering, ALongRowMovedLastIsPricedAsTheColumnsItMakesReachTheBotto
 }
 
 }  // namespace
-}  // namespace ode_bpp::pivoting
+}  // namespace ode_bpp::ordering

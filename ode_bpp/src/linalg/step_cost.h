@@ -6,7 +6,7 @@
 
 #include "linalg/cost_model.h"
 
-namespace ode_bpp::pivoting {
+namespace ode_bpp::linalg {
 
 /// Relative prices of the CostModel's units (linalg/cost_model.h): a rotated entry costs two
 /// multiply-adds (Alg. 3 lines 13-14), a refactor unit one, a copied entry a fraction of one.
@@ -15,7 +15,7 @@ constexpr double kRefactorUnit = 1.0;
 constexpr double kCopyUnit = 0.25;
 
 /// Copy L0 from column copy_from, then delete the tight rows (ascending, permuted space).
-inline double deletion_price(const linalg::CostModel& cost, const std::vector<int>& tight_rows, int copy_from) {
+inline double deletion_price(const CostModel& cost, const std::vector<int>& tight_rows, int copy_from) {
     double price = kCopyUnit * cost.copy_cost(copy_from);
     for (int i : tight_rows) price += kDeleteUnit * cost.delete_cost(i);
     return price;
@@ -23,8 +23,8 @@ inline double deletion_price(const linalg::CostModel& cost, const std::vector<in
 
 /// Copy L0 from column copy_from (and Ap's tail), then refactor from the first tight row,
 /// skipping the tight ones.
-inline double refactor_price(const linalg::CostModel& cost, const std::vector<int>& tight_rows, int copy_from) {
+inline double refactor_price(const CostModel& cost, const std::vector<int>& tight_rows, int copy_from) {
     return kCopyUnit * cost.copy_cost(copy_from) + kRefactorUnit * cost.refactor_cost(tight_rows.front(), tight_rows);
 }
 
-}  // namespace ode_bpp::pivoting
+}  // namespace ode_bpp::linalg

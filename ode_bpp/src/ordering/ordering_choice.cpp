@@ -1,4 +1,4 @@
-#include "pivoting/ordering_choice.h"
+#include "ordering/ordering_choice.h"
 
 #include <algorithm>
 #include <numeric>
@@ -8,9 +8,13 @@
 #include "linalg/skyline.h"
 #include "ordering/graph.h"
 #include "ordering/order_rows.h"
-#include "pivoting/step_cost.h"
+#include "linalg/step_cost.h"
 
-namespace ode_bpp::pivoting {
+namespace ode_bpp::ordering {
+
+using linalg::deletion_price;
+using linalg::kRefactorUnit;
+using linalg::refactor_price;
 
 namespace {
 
@@ -97,4 +101,4 @@ std::vector<int> choose_ordering(Method method, const Problem& problem, const li
     return best;
 }
 
-}  // namespace ode_bpp::pivoting
+}  // namespace ode_bpp::ordering

@@ -6,7 +6,7 @@
 #include "ode_bpp/solver.h"
 #include "linalg/symmetric_rows.h"
 
-namespace ode_bpp::pivoting {
+namespace ode_bpp::ordering {
 
 /// perm[new] = old (n entries) for the method:
 ///  - BppChol, BppDown: the identity (Alg. 1 and Alg. 2 without skyline use no ordering);
@@ -29,4 +29,4 @@ constexpr double kStepsPerWarmSolve = 3;
 /// cheaper of deletion and refactoring. A: original order.
 double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight);
 
-}  // namespace ode_bpp::pivoting
+}  // namespace ode_bpp::ordering

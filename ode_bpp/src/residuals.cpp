@@ -41,13 +41,60 @@ bool is_free(const Problem& p, ConstStrided x, const std::vector<RowState>* stat
 /// since its bound mu_i |x_n| is known only to that scale (the solver's certificate,
 /// friction_consistent in bpp_driver.cpp, uses the same). Without it a friction row whose own
 /// scale is rounding (x ~ 1e-13 beside a resting normal) read 0.5 on answers accurate to 1e-12.
-double row_scale(const Problem& p, const linalg::SymmetricRows& A, const std::vector<double>& scale, int i) {
-    double s = scale[i] / A.diag(i);
+template <typename Diagonal>
+double row_scale(const Problem& p, Diagonal diag, const std::vector<double>& scale, int i) {
+    double s = scale[i] / diag(i);
     if (i >= p.nub && p.findex != nullptr && p.findex[i] >= 0 && std::isfinite(p.hi[i])) {
         const int n = p.findex[i];
-        s = std::max(s, std::abs(p.hi[i]) * scale[n] / A.diag(n));
+        s = std::max(s, std::abs(p.hi[i]) * scale[n] / diag(n));
     }
     return s;
+}
+
+/// Residuals from w = A x - b and scale = |A||x| + |b|; diag(i) = A_ii.
+template <typename Diagonal>
+Residuals summarize(const Problem& p, Diagonal diag, ConstStrided x, const std::vector<double>& w,
+                    const std::vector<double>& scale, const std::vector<RowState>* states) {
+    Residuals r;
+    for (int i = 0; i < p.n; ++i) {
+        const auto bounds = effective_bounds(p, x, i);
+        r.natural = std::max(r.natural, std::abs(x[i] - clamp_to(x[i] - w[i], bounds)));
+        const double scaled = std::abs(x[i] - clamp_to(x[i] - w[i] / diag(i), bounds));
+        if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled / row_scale(p, diag, scale, i));
+        if (is_free(p, x, states, i)) r.free = std::max(r.free, std::abs(w[i]));
+        if (p.findex != nullptr && p.findex[i] >= 0)
+            r.friction = std::max(r.friction, std::abs(x[i]) - bounds.second);
+    }
+    r.relative_natural = r.natural / std::max(1.0, inf_norm(p.b, p.n));
+    return r;
+}
+
+/// A_ii of the dense form.
+struct DenseDiagonal {
+    const Problem& p;
+    double operator()(int i) const { return p.A[static_cast<std::ptrdiff_t>(i) * p.lda + i]; }
+};
+
+/// w = A x - b and scale = |A||x| + |b| from the dense form's lower triangle, each entry used for
+/// both of its rows. O(n^2), no allocation beyond w and scale.
+void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
+    w.resize(static_cast<std::size_t>(p.n));
+    scale.resize(static_cast<std::size_t>(p.n));
+    for (int i = 0; i < p.n; ++i) {
+        const double d = DenseDiagonal{p}(i) * x[i];
+        w[i] = d - p.b[i];
+        scale[i] = std::abs(d) + std::abs(p.b[i]);
+    }
+    for (int i = 1; i < p.n; ++i) {
+        const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
+        for (int j = 0; j < i; ++j) {
+            const double to_i = row[j] * x[j], to_j = row[j] * x[i];
+            w[i] += to_i;
+            scale[i] += std::abs(to_i);
+            w[j] += to_j;
+            scale[j] += std::abs(to_j);
+        }
+    }
 }
 
 }  // namespace
@@ -80,31 +127,22 @@ void residual_vectors(const Problem& p, const linalg::SymmetricRows& A, ConstStr
 }
 
 void residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
-    residual_vectors(p, linalg::SymmetricRows(p, {}), x, w, scale);
+    if (p.sparse != nullptr) return residual_vectors(p, *p.sparse, x, w, scale);
+    dense_residual_vectors(p, x, w, scale);
 }
 
 Residuals compute_residuals(const Problem& p, ConstStrided x, const std::vector<RowState>* states) {
-    return compute_residuals(p, linalg::SymmetricRows(p, {}), x, states);
+    if (p.sparse != nullptr) return compute_residuals(p, *p.sparse, x, states);
+    ResidualScratch& scratch = thread_scratch();  // capacity kept between solves
+    dense_residual_vectors(p, x, scratch.w, scratch.scale);
+    return summarize(p, DenseDiagonal{p}, x, scratch.w, scratch.scale, states);
 }
 
 Residuals compute_residuals(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x,
                             const std::vector<RowState>* states) {
     ResidualScratch& scratch = thread_scratch();  // capacity kept between solves
-    std::vector<double>&w = scratch.w, &scale = scratch.scale;
-    residual_vectors(p, A, x, w, scale);
-    Residuals r;
-    for (int i = 0; i < p.n; ++i) {
-        const auto bounds = effective_bounds(p, x, i);
-        r.natural = std::max(r.natural, std::abs(x[i] - clamp_to(x[i] - w[i], bounds)));
-        const double diag = A.diag(i);
-        const double scaled = std::abs(x[i] - clamp_to(x[i] - w[i] / diag, bounds));
-        if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled / row_scale(p, A, scale, i));
-        if (is_free(p, x, states, i)) r.free = std::max(r.free, std::abs(w[i]));
-        if (p.findex != nullptr && p.findex[i] >= 0)
-            r.friction = std::max(r.friction, std::abs(x[i]) - bounds.second);
-    }
-    r.relative_natural = r.natural / std::max(1.0, inf_norm(p.b, p.n));
-    return r;
+    residual_vectors(p, A, x, scratch.w, scratch.scale);
+    return summarize(p, [&A](int i) { return A.diag(i); }, x, scratch.w, scratch.scale, states);
 }
 
 }  // namespace ode_bpp

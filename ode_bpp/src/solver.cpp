@@ -25,6 +25,7 @@
 #include "ode_bpp/solver.h"
 #include "ode_bpp/validation.h"
 #include "pivoting/bpp_driver.h"
+#include "pivoting/small_island.h"
 #include "linalg/symmetric_rows.h"
 #include "residuals.h"
 
@@ -130,13 +131,16 @@ void apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Opt
     r.tight = 0;
 }
 
-void fill_residuals(const Problem& p, const linalg::SymmetricRows& A, Result& r, const std::vector<double>& x) {
-    const Residuals res = compute_residuals(p, A, ConstStrided{x.data(), 1}, r.states.empty() ? nullptr : &r.states);
+void store_residuals(const Residuals& res, Result& r) {
     r.natural_residual = res.natural;
     r.relative_natural_residual = res.relative_natural;
     r.scaled_natural_residual = res.scaled_natural;
     r.free_residual = res.free;
     r.friction_error = res.friction;
+}
+
+void fill_residuals(const Problem& p, const linalg::SymmetricRows& A, Result& r, const std::vector<double>& x) {
+    store_residuals(compute_residuals(p, A, ConstStrided{x.data(), 1}, r.states.empty() ? nullptr : &r.states), r);
 }
 
 // noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
@@ -153,6 +157,17 @@ const linalg::SymmetricRows& rows_of(const Problem& problem) {
     linalg::SymmetricRows& rows = thread_rows();
     rows.assign(problem, {});
     return rows;
+}
+
+/// The small-island path (pivoting/small_island.h); true when it answered, with r complete and
+/// x written. answer: scratch, n entries.
+bool solve_small(const Problem& problem, const Options& options, std::vector<double>& answer, Result& r, Strided x) {
+    if (!pivoting::solve_small_island(problem, options, answer, r)) return false;
+    r.method = options.method;
+    r.friction = options.friction;
+    store_residuals(compute_residuals(problem, ConstStrided{answer.data(), 1}, &r.states), r);
+    for (int i = 0; i < problem.n; ++i) x[i] = answer[i];
+    return true;
 }
 
 ValidationResult validate_call(const Problem& problem, const Options& options) {
@@ -236,8 +251,10 @@ Result solve(const Problem& problem, const Options& options, Strided x) {
         return r;
     }
     ValidationResult v = validate_call(problem, options);
-    const linalg::SymmetricRows* A = v.valid ? &rows_of(problem) : nullptr;
-    if (v.valid) v = validate_matrix(*A);
+    const bool small = v.valid && pivoting::takes_small_island(problem, options);
+    if (small) v = validate_matrix(problem);
+    const linalg::SymmetricRows* A = v.valid && !small ? &rows_of(problem) : nullptr;
+    if (A != nullptr) v = validate_matrix(*A);
     if (!v.valid) {
         Result r = invalid_input(problem, problem.n > 0 ? x : Strided{}, v.message);
         r.method = options.method;
@@ -245,9 +262,13 @@ Result solve(const Problem& problem, const Options& options, Strided x) {
         return r;
     }
     std::vector<double> answer;
+    Result small_attempt;
+    if (small && solve_small(problem, options, answer, small_attempt, x)) return small_attempt;
+    if (A == nullptr) A = &rows_of(problem);
     Result r = dispatch(problem, *A, options, answer);
     r.method = options.method;
     r.friction = options.friction;
+    r.pivots += small_attempt.pivots;  // the steps of a small-island attempt that did not finish
     apply_fallbacks(problem, *A, options, r, answer);
     fill_residuals(problem, *A, r, answer);
     if (!is_bpp(options.method)) r.factor_error = std::numeric_limits<double>::quiet_NaN();

@@ -130,6 +130,8 @@ ValidationResult validate_matrix(const linalg::SymmetricRows& A) {
     return {};
 }
 
+ValidationResult validate_matrix(const Problem& problem) { return check_matrix(problem); }
+
 ValidationResult validate(const Problem& problem) {
     ValidationResult r = check_sizes(problem);
     if (r.valid) r = check_findex(problem);

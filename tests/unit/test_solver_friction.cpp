@@ -9,18 +9,15 @@
 #include "ode_bpp/solver.h"
 #include "problems/generators.h"
 #include "problems/named.h"
+#include "problems/vectors.h"
 #include "problems/oracle.h"
 
 namespace ode_bpp {
 namespace {
 
-const Method kBppMethods[] = {Method::BppChol, Method::BppDown, Method::BppSky, Method::Bpp};
+using problems::max_abs_diff;
 
-double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
-    double d = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
-    return d;
-}
+const Method kBppMethods[] = {Method::BppChol, Method::BppDown, Method::BppSky, Method::Bpp};
 
 Result run(const problems::OwnedProblem& p, Method m, FrictionMode f, std::vector<double>& x, Options o = {}) {
     o.method = m;

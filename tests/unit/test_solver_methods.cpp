@@ -10,24 +10,16 @@
 #include "ode_bpp/solver.h"
 #include "problems/generators.h"
 #include "problems/named.h"
+#include "problems/vectors.h"
 #include "problems/oracle.h"
 
 namespace ode_bpp {
 namespace {
 
+using problems::inf_norm;
+using problems::max_abs_diff;
+
 const Method kBppMethods[] = {Method::BppChol, Method::BppDown, Method::BppSky, Method::Bpp};
-
-double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) {
-    double d = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
-    return d;
-}
-
-double inf_norm(const std::vector<double>& a) {
-    double m = 0;
-    for (double v : a) m = std::max(m, std::abs(v));
-    return m;
-}
 
 Result run(const problems::OwnedProblem& p, Method m, std::vector<double>& x, Options o = {}) {
     o.method = m;

@@ -109,57 +109,42 @@ const char* to_string(Fallback f);
 /// Per-row state of an index set: the paper's F, T_lo and T_hi.
 enum class RowState : std::int8_t { Free = 0, AtLo = 1, AtHi = 2 };
 
+/// Settings of one solve. The tuned defaults and the measurements behind them: docs/tuning.md.
 struct Options {
     Method method = Method::Bpp;
     FrictionMode friction = FrictionMode::Frozen;
     /// Pivot-step budget per fixed-bound solve (Frozen friction makes two, Consistent one per
-    /// round). The paper used 35. Measured inside ODE on the six paper scenes at CFM 1e-10 and at
-    /// compliance 1e-6 .. 1e-10 (scripts/convergence.sh), with the rescue below: 99 % of the
-    /// fixed-bound solves need at most 60-85 steps on the winch (nearly redundant chain-drum
-    /// contacts), at most ~50 on the other scenes; 100 leaves head-room while a hopeless solve
-    /// costs about one Dantzig solve of the same island before ODE's Dantzig takes over.
+    /// round). The paper used 35.
     int max_pivots = 100;
     /// Block steps without a fall in the number of infeasible rows before Murty's single pivot.
-    /// 3: with the rescue below, it failed least often on the winch (ODE frames at CFM 1e-10 and
-    /// 6e-7: 1 and 0 fixed-bound solves of 2400 over budget, against 19 and 4 with 10), because a
-    /// stage of the continuation that cycles is recognized sooner.
     int murty_after = 3;
     /// Steps of the plain attempt of a fixed-bound solve. If it has not converged by then, the
     /// solve starts again from its warm start through a regularization continuation (A + delta I,
-    /// delta falling adaptively from 1e-4 max_i A_ii to the problem's own), with the rest of the
-    /// budget; if that gives up, the plain attempt resumes. 0: no rescue. 8: of the warm-started
-    /// ODE solves that converge plainly at all, 65 % (winch) to 99 % (parkour) do so within 8
-    /// steps; the rest mostly cycle on nearly redundant contact rows, where the continuation is
-    /// cheaper than waiting (of 6, 8, 12 and 20, 8 left the fewest winch solves over budget).
+    /// delta falling adaptively from 1e-4 max_i A_ii to the problem's own, pivoting/regularization.h),
+    /// with the rest of the budget; if that gives up, the plain attempt resumes. 0: no rescue.
     int rescue_after = 8;
     /// Relative tolerance: a row is infeasible when it breaks its bound by more than
     /// tol * (|A||x| + |b|)_i (scaled per row, never an absolute constant).
     double tolerance = 1e-9;
-    /// Consistent friction: outer bound updates, damped (new = (1-d)*old + d*target). 100: where
-    /// a chain wraps a drum (the winch) the bounds converge slowly, since the friction raises the
-    /// normal impulses it depends on; 30 rounds left 7 % of those ODE frames inconsistent, 100
-    /// fewer than 1 %, and a round usually costs a single pivot step.
+    /// Consistent friction: most outer bound updates, damped (new = (1-d)*old + d*target).
     int max_friction_rounds = 100;
     double friction_damping = 0.6;
     /// Consistent friction: first solve with the friction bounds moving with the normals inside
     /// each pivot step, friction rows at a bound solved together with their normals
-    /// (pivoting/friction_link.h); the outer damped bound updates below only where that fails.
-    /// False: outer damped updates only (ode-bpp 0.1's Consistent mode).
+    /// (pivoting/friction_link.h); the outer damped bound updates only where that fails.
     bool link_friction = true;
     /// Consistent friction: where the linked solve does not finish within its budget, Lemke's
     /// method on the friction LCP (pivoting/friction_lcp.h: the friction rows split into
     /// non-negative parts with a multiplier for mu x_n - |x_f|), whose answer a linked solve then
-    /// certifies. On the winch at compliance 1e-10 it took the frames consistent from 97.8 % to
-    /// 100 %. False: skip it (outer damped rounds as the last resort).
+    /// certifies. False: outer damped rounds as the last resort.
     bool lemke_friction = true;
-    /// Regularization continuation for nearly singular A: solve with A + delta*I, delta falling
-    /// geometrically to 0, each stage warm-started from the last. 0 disables it.
+    /// An up-front regularization continuation: solve with A + delta I, delta falling
+    /// geometrically over this many stages, each warm-started from the last. 0 disables it.
     int continuation_stages = 0;
-    /// Bpp: islands of at most this many rows refactor densely at every step (as BppChol), in
-    /// the caller's order: there the skyline's set-up (ordering, shape, cost model, L0 and its
-    /// copy) costs more than a dense Cholesky of the whole island. 32: on the captured paper
-    /// corpus (cold), the 12-row forwarder and 18-24-row crane islands took 1.2-1.3x bpp-chol's
-    /// time with the skyline. 0: always the skyline.
+    /// Bpp: islands of at most this many rows take the small-island path (pivoting/small_island.h)
+    /// in Frozen mode, or refactor densely at every step in the caller's order otherwise: there
+    /// the skyline's set-up (ordering, shape, cost model, L0 and its copy) costs more than a dense
+    /// Cholesky of the whole island. 0: always the skyline.
     int dense_island_rows = 32;
     /// Projected Gauss-Seidel sweeps (Method::Pgs only).
     int pgs_iterations = 35;
@@ -170,8 +155,8 @@ struct Options {
     /// they may widen (pivoting/ordering_choice.h). False: Cuthill-McKee or its reverse only.
     bool order_tight_last = true;
     /// Bpp and BppSky: the symmetric row permutation to factor in (perm[new] = old, n entries),
-    /// e.g. Result::ordering of the same island's previous step, skipping the ordering (a third of
-    /// a warm 39-row chain solve); empty, or not a permutation of 0..n-1: computed afresh.
+    /// e.g. Result::ordering of the same island's previous step, skipping the ordering; empty, or
+    /// not a permutation of 0..n-1: computed afresh.
     std::vector<int> ordering;
     /// Compute Table 4's ||L_deleted - chol(A_FF)||_F at the final index set (costly).
     bool compute_factor_error = false;

@@ -34,6 +34,9 @@ ValidationResult validate_structure(const Problem& problem);
 /// A's entries (lower triangle and diagonal): finite, diagonal > 0; the same first defect and
 /// message as validate() on the dense form. O(non-zeros).
 ValidationResult validate_matrix(const linalg::SymmetricRows& A);
+/// The same for a problem that passed validate_structure, whichever form its A comes in: O(n^2)
+/// for the dense form's lower triangle, O(non-zeros) for the sparse form.
+ValidationResult validate_matrix(const Problem& problem);
 
 /// Checks that a warm start fits the problem: empty (no warm start) or exactly n entries.
 ValidationResult validate_warm_start(const Problem& problem, const std::vector<RowState>& warm_start);

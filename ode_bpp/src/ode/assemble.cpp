@@ -121,23 +121,34 @@ double diagonal_entry(const dMLCP& island, const dMLCPJoint& p, int i, const Sha
     return a;
 }
 
-/// The lower entries and the diagonal of joint p's rows, row by row with increasing columns.
+/// The lower entries and the diagonal of joint p's rows, row by row with increasing columns:
+/// keep(i, j, a) for each lower entry (j < i), keep(i, i, a) for each diagonal entry.
+template <typename Keep>
 void assemble_joint(const dMLCP& island, int pj, const std::vector<int>& neighbours, std::vector<SharedSides>& sides,
-                    std::vector<linalg::LowerEntry>& lower, std::vector<double>& diagonal) {
+                    Keep& keep) {
     const dMLCPJoint& p = island.joints[pj];
     sides.clear();
     for (int qj : neighbours) sides.push_back(shared_sides(p, island.joints[qj]));
     const SharedSides own = shared_sides(p, p);
     for (int i = p.row; i < p.row + p.m; ++i) {
-        const auto keep = [&lower, i](int j, double a) {
-            if (a != 0) lower.push_back({i, j, a});  // exact zeros are not stored, as from the dense A
-        };
+        const auto keep_row_i = [&keep, i](int j, double a) { keep(i, j, a); };
         for (std::size_t k = 0; k < neighbours.size(); ++k) {
             const dMLCPJoint& q = island.joints[neighbours[k]];
-            row_against_joint(island, p, i, q, q.row + q.m, sides[k], 0.0, keep);
+            row_against_joint(island, p, i, q, q.row + q.m, sides[k], 0.0, keep_row_i);
         }
-        row_against_joint(island, p, i, p, i, own, 0.0, keep);
-        diagonal[i] = diagonal_entry(island, p, i, own);
+        row_against_joint(island, p, i, p, i, own, 0.0, keep_row_i);
+        keep(i, i, diagonal_entry(island, p, i, own));
+    }
+}
+
+/// Every joint's rows in turn (assemble_joint), against the earlier joints it shares a body with.
+template <typename Keep>
+void assemble_joints(const dMLCP& island, Keep keep) {
+    Scratch& scratch = thread_scratch();
+    build_incidence(island, scratch.incidence);
+    for (int pj = 0; pj < island.nj; ++pj) {
+        earlier_neighbours(island, scratch.incidence, pj, scratch.neighbours);
+        assemble_joint(island, pj, scratch.neighbours, scratch.sides, keep);
     }
 }
 
@@ -150,16 +161,23 @@ bool has_sparse_form(const dMLCP& p) {
 
 void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out) {
     Scratch& scratch = thread_scratch();
-    build_incidence(island, scratch.incidence);
     std::vector<linalg::LowerEntry>& lower = scratch.lower;
     lower.clear();
     std::vector<double>& diagonal = scratch.diagonal;
     diagonal.resize(static_cast<std::size_t>(island.m));
-    for (int pj = 0; pj < island.nj; ++pj) {
-        earlier_neighbours(island, scratch.incidence, pj, scratch.neighbours);
-        assemble_joint(island, pj, scratch.neighbours, scratch.sides, lower, diagonal);
-    }
+    assemble_joints(island, [&lower, &diagonal](int i, int j, double a) {
+        if (j == i) diagonal[i] = a;
+        else if (a != 0) lower.push_back({i, j, a});  // exact zeros are not stored, as from the dense A
+    });
     out.assign_lower(diagonal, lower);
+}
+
+void assemble_dense_lower(const dMLCP& island, double* A, int lda) {
+    for (int i = 0; i < island.m; ++i) {
+        double* row = A + static_cast<std::ptrdiff_t>(i) * lda;
+        std::fill(row, row + i, 0.0);
+    }
+    assemble_joints(island, [A, lda](int i, int j, double a) { A[static_cast<std::ptrdiff_t>(i) * lda + j] = a; });
 }
 
 }  // namespace ode_bpp::ode
@@ -170,9 +188,7 @@ void island_matrix_lower(const dMLCP& island, std::vector<double>& A) {
     const auto m = static_cast<std::size_t>(std::max(island.m, 0));
     A.assign(m * m, 0.0);
     if (ode::has_sparse_form(island)) {
-        linalg::SymmetricRows rows;
-        ode::assemble_rows(island, rows);
-        rows.to_dense_lower(A.data(), island.m);
+        ode::assemble_dense_lower(island, A.data(), island.m);
         return;
     }
     if (island.A == nullptr) return;

@@ -4,12 +4,17 @@
 
 namespace ode_bpp::ode {
 
-Problem IslandView::of(const dMLCP& p) {
+Problem IslandView::of(const dMLCP& p, bool dense_lower) {
     Problem q;
     q.n = p.m;
     q.A = p.A;
     q.lda = p.skip;
-    if (has_sparse_form(p)) {
+    if (has_sparse_form(p) && dense_lower) {
+        dense_.resize(static_cast<std::size_t>(p.m) * p.m);
+        assemble_dense_lower(p, dense_.data(), p.m);
+        q.A = dense_.data();
+        q.lda = p.m;
+    } else if (has_sparse_form(p)) {
         assemble_rows(p, assembled_);
         q.sparse = &assembled_;
     }

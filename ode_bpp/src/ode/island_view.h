@@ -20,12 +20,15 @@ namespace ode_bpp::ode {
 class IslandView {
 public:
     /// The view of `island`, valid while this object and the island's arrays live (it points
-    /// into both). O(entries of A) in the sparse form, O(rows) otherwise.
-    Problem of(const dMLCP& island);
+    /// into both). An island in the sparse form is assembled (ode/assemble.h): into compressed
+    /// rows, O(entries of A); or, with dense_lower, into a dense lower triangle for the
+    /// small-island path (pivoting/small_island.h), O(m^2). O(rows) otherwise.
+    Problem of(const dMLCP& island, bool dense_lower = false);
 
 private:
     std::vector<int> block_row_, block_body_;
     linalg::SymmetricRows assembled_;
+    std::vector<double> dense_;  ///< m x m, row stride m: the lower triangle of a small island
 };
 
 /// The first joint whose rows do not continue where the previous joint's ended (joints must tile

@@ -27,6 +27,7 @@
 #include "ode/island_view.h"
 #include "ode/ordering_cache.h"
 #include "ode/row_identity.h"
+#include "pivoting/small_island.h"
 
 namespace ode_bpp {
 namespace {
@@ -106,7 +107,6 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     }
     const bool known_rows = problem->joints != nullptr && !keys.empty();
     const bool use_memory = known_rows && has_bounded_rows(*problem);
-    const Problem q = view.of(*problem);
 
     thread_local Options options;  // its vectors keep their capacity from island to island
     bool warm = false;
@@ -121,6 +121,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     }
     options.method = method;
     if (!warm) options.warm_start.clear();
+    const Problem q = view.of(*problem, pivoting::is_small_island(problem->m, options));
 
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
     Result r = solve(q, options, Strided{problem->pairsbx + 1, 2});

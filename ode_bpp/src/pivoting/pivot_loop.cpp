@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <limits>
 
+#include "pivoting/classify_row.h"
 #include "pivoting/friction_link.h"
+#include "pivoting/tuning.h"
 
 namespace ode_bpp::pivoting {
 
@@ -26,23 +28,72 @@ struct Infeasibility {
     }
 };
 
+/// What goes with an x: w = (A + shift I) x - b, the row scales (|A||x| + |b|)_i, and the
+/// bounds in force (moving friction bounds change them).
+struct Iterate {
+    std::vector<double> w, scale, lo, hi;
+};
+
+/// An answer set aside: the least infeasible iterate of a run, or a converged answer while the
+/// polish tries another.
+struct Snapshot {
+    std::vector<RowState> states;
+    std::vector<double> x;
+    Iterate iterate;
+    void take(const std::vector<RowState>& s, const std::vector<double>& xs, const Iterate& it) {
+        states = s;
+        x = xs;
+        iterate = it;
+    }
+    void give(std::vector<RowState>& s, std::vector<double>& xs, Iterate& it) const {
+        s = states;
+        xs = x;
+        it = iterate;
+    }
+};
+
+/// Index sets entered by the block steps of one run. Block steps are deterministic (x_F from
+/// Eq. 6, then Eq. 4), so a revisit is a cycle: on nearly redundant contact rows the rescue
+/// stages met cycles of 2-6 sets, which the stall count alone let run 6-30 steps (winch,
+/// forklift, parkour at ODE's CFM 1e-10).
+class VisitedSets {
+public:
+    void clear() {
+        hashes_.clear();
+        sets_.clear();
+    }
+    /// True if states was entered before; otherwise records it.
+    bool revisits(const std::vector<RowState>& states) {
+        std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the states
+        for (RowState s : states) h = (h ^ static_cast<std::uint64_t>(static_cast<int>(s) + 1)) * 1099511628211ULL;
+        const std::size_t n = states.size();
+        for (std::size_t k = 0; k < hashes_.size(); ++k)
+            if (hashes_[k] == h && std::equal(states.begin(), states.end(), sets_.begin() + static_cast<std::ptrdiff_t>(k * n)))
+                return true;
+        hashes_.push_back(h);
+        sets_.insert(sets_.end(), states.begin(), states.end());
+        return false;
+    }
+
+private:
+    std::vector<std::uint64_t> hashes_;
+    std::vector<RowState> sets_;  ///< n entries each
+};
+
 /// The loop's vectors, kept per thread so that their capacity outlives one run: on small islands
 /// allocating them afresh at every run cost a third of the solve (callgrind, ODE's demo_motors).
 /// A run uses them from start to end and calls nothing that runs another loop on this thread.
 struct Workspace {
     std::vector<char> tight;
-    std::vector<double> Ax, w, scale, x_free, rhs_x;
-    Infeasibility inf, best_inf;
-    std::vector<RowState> best_states;
-    std::vector<double> best_x, best_w;
-    std::vector<double> lo, hi;  ///< the bounds in force (moving friction bounds change)
-    std::vector<double> best_lo, best_hi;
-    std::vector<int> linked;  ///< linked friction rows of the current step
-    std::vector<std::uint64_t> visited_hash;  ///< index sets entered by block steps (stall_after > 0)
-    std::vector<RowState> visited;            ///< the same sets, n entries each
-    std::vector<RowState> trial_states;       ///< the index set a polish round starts from
-    std::vector<RowState> kept_states;        ///< the converged answer while a polish tries another
-    std::vector<double> kept_x, kept_w, kept_lo, kept_hi;
+    std::vector<double> Ax, x_free, rhs_x;
+    Iterate current;
+    Infeasibility inf;
+    Snapshot best;              ///< the least infeasible iterate so far
+    Infeasibility best_inf;     ///< its infeasible rows (where Murty's phase starts)
+    std::vector<int> linked;    ///< linked friction rows of the current step
+    VisitedSets visited;
+    std::vector<RowState> trial;  ///< the index set a polish round starts from
+    Snapshot kept;              ///< the converged answer while a polish round tries another
 };
 
 [[gnu::noinline]] Workspace& thread_workspace() {
@@ -53,10 +104,10 @@ struct Workspace {
 class PivotLoop {
 public:
     PivotLoop(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings, PivotCounters& counters)
-        : lcp_(lcp), solver_(solver), settings_(settings), counters_(counters), n_(lcp.n()) {
-        lo_ = lcp.lo;
-        hi_ = lcp.hi;
-        rhs_x_.assign(static_cast<std::size_t>(n_), 0.0);
+        : lcp_(lcp), solver_(solver), settings_(settings), counters_(counters), n_(lcp.n()), ws_(thread_workspace()) {
+        it().lo = lcp.lo;
+        it().hi = lcp.hi;
+        ws_.rhs_x.assign(static_cast<std::size_t>(n_), 0.0);
     }
 
     LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
@@ -68,9 +119,8 @@ public:
     }
 
 private:
-    /// Polish rounds after convergence, and the pivot steps each may take (within the budget).
-    static constexpr int kPolishRounds = 2;
-    static constexpr int kPolishSteps = 6;
+    Iterate& it() { return ws_.current; }
+    const Iterate& it() const { return ws_.current; }
 
     /// The classification tolerance lets a tight row keep a multiplier of the wrong sign (w_i > 0
     /// at hi, w_i < 0 at lo) up to tol * (|A||x| + |b|)_i. Where A is nearly singular (CFM 1e-10,
@@ -81,18 +131,17 @@ private:
     /// centimetres. Rows wrong beyond the factor's accuracy are freed and the loop resumes from
     /// there; its new answer is kept only if it converges, else the first one stands.
     void polish(std::vector<RowState>& states, std::vector<double>& x, int budget) {
-        for (int round = 0; round < kPolishRounds && budget > 0; ++round) {
-            std::vector<RowState>& trial = ws_.trial_states;
-            trial = states;
-            if (!free_wrong_sign_rows(trial)) return;
-            keep(states, x);
-            const LoopOutcome outcome = pivot(trial, x, std::min(kPolishSteps, budget));
+        for (int round = 0; round < tuning::kPolishRounds && budget > 0; ++round) {
+            ws_.trial = states;
+            if (!free_wrong_sign_rows(ws_.trial)) return;
+            ws_.kept.take(states, x, it());
+            const LoopOutcome outcome = pivot(ws_.trial, x, std::min(tuning::kPolishSteps, budget));
             budget -= steps_taken_;
             if (outcome != LoopOutcome::Converged) {
-                restore_kept(states, x);
+                ws_.kept.give(states, x, it());
                 return;
             }
-            states.swap(trial);
+            states.swap(ws_.trial);
         }
     }
 
@@ -102,8 +151,7 @@ private:
         bool any = false;
         for (int i = 0; i < n_; ++i) {
             if (pinned(i)) continue;
-            const double wrong = states[i] == RowState::AtHi ? w_[i] : states[i] == RowState::AtLo ? -w_[i] : 0.0;
-            if (wrong > limit * scale_[i]) {
+            if (wrong_sign(states[i], it().w[i]) > limit * it().scale[i]) {
                 states[i] = RowState::Free;
                 any = true;
             }
@@ -111,37 +159,20 @@ private:
         return any;
     }
 
-    void keep(const std::vector<RowState>& states, const std::vector<double>& x) {
-        ws_.kept_states = states;
-        ws_.kept_x = x;
-        ws_.kept_w = w_;
-        ws_.kept_lo = lo_;
-        ws_.kept_hi = hi_;
-    }
-
-    void restore_kept(std::vector<RowState>& states, std::vector<double>& x) {
-        states = ws_.kept_states;
-        x = ws_.kept_x;
-        w_ = ws_.kept_w;
-        lo_ = ws_.kept_lo;
-        hi_ = ws_.kept_hi;
-    }
-
-    /// The pivoting loop proper, at most max_steps solves of Eq. 6 from `states`.
+    /// The pivoting loop proper, at most max_steps solves of Eq. 6 from `states`: block steps
+    /// while the count of infeasible rows falls (or for murty_after steps without a new least),
+    /// then Murty's single pivots from the least infeasible set until it falls again.
     LoopOutcome pivot(std::vector<RowState>& states, std::vector<double>& x, int max_steps) {
         int least_count = n_ + 1;        // Júdice-Pires: fewest infeasible rows seen so far
         int block_steps_left = settings_.murty_after;
         bool in_murty = false;
         int last_progress = 0;           // step of the latest new least count
         best_count_ = n_ + 1;
-        visited_hash_.clear();
-        visited_.clear();
+        best_violation_ = std::numeric_limits<double>::infinity();
+        ws_.visited.clear();
         steps_taken_ = 0;
         for (int step = 0; step < max_steps; ++step) {
-            if (settings_.stall_after > 0 && !in_murty && revisits(states)) {
-                restore_best(states, x);
-                return LoopOutcome::Stalled;
-            }
+            if (settings_.stall_after > 0 && !in_murty && ws_.visited.revisits(states)) return give_best(states, x, LoopOutcome::Stalled);
             ++steps_taken_;
             if (!solve_step(states, x)) return LoopOutcome::Breakdown;
             const Infeasibility& inf = classify(states, x);
@@ -157,8 +188,7 @@ private:
                 in_murty = false;
                 block_pivot(inf, states);
             } else if (settings_.stall_after > 0 && step - last_progress >= settings_.stall_after) {
-                restore_best(states, x);
-                return LoopOutcome::Stalled;
+                return give_best(states, x, LoopOutcome::Stalled);
             } else if (block_steps_left > 0) {
                 --block_steps_left;
                 block_pivot(inf, states);
@@ -168,14 +198,13 @@ private:
                 // random and chain problems; termination is unaffected: each phase is
                 // Murty's finite method and ends only below a count that never rises)
                 in_murty = true;
-                states = best_states_;
-                murty_pivot(best_inf_, states);
+                states = ws_.best.states;
+                murty_pivot(ws_.best_inf, states);
             } else {
                 murty_pivot(inf, states);
             }
         }
-        restore_best(states, x);
-        return LoopOutcome::MaxIterations;
+        return give_best(states, x, LoopOutcome::MaxIterations);
     }
 
     /// Rows that must be free are free; pinned rows (lo == hi) are tight; a tight state at an
@@ -187,50 +216,34 @@ private:
             if (s != RowState::AtLo && s != RowState::AtHi) s = RowState::Free;  // also garbage values
             if (lcp_.always_free[i]) s = RowState::Free;
             else if (pinned(i)) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
-            else if (s == RowState::AtLo && std::isinf(lo_[i])) s = RowState::Free;
-            else if (s == RowState::AtHi && std::isinf(hi_[i])) s = RowState::Free;
+            else if (s == RowState::AtLo && std::isinf(it().lo[i])) s = RowState::Free;
+            else if (s == RowState::AtHi && std::isinf(it().hi[i])) s = RowState::Free;
         }
-    }
-
-    /// True if this index set was entered before in this run; otherwise records it. Block steps
-    /// are deterministic (x_F from Eq. 6, then Eq. 4), so a revisit is a cycle: on nearly
-    /// redundant contact rows the rescue stages met cycles of 2-6 sets, which the stall count
-    /// alone let run 6-30 steps (winch, forklift, parkour at ODE's CFM 1e-10).
-    bool revisits(const std::vector<RowState>& states) {
-        std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the states
-        for (RowState s : states) h = (h ^ static_cast<std::uint64_t>(static_cast<int>(s) + 1)) * 1099511628211ULL;
-        const std::size_t n = states.size();
-        for (std::size_t k = 0; k < visited_hash_.size(); ++k)
-            if (visited_hash_[k] == h && std::equal(states.begin(), states.end(), visited_.begin() + static_cast<std::ptrdiff_t>(k * n)))
-                return true;
-        visited_hash_.push_back(h);
-        visited_.insert(visited_.end(), states.begin(), states.end());
-        return false;
     }
 
     /// One pivot step: x_T at its bounds (Alg. 1 lines 6-7), x_F from Eq. 6, then w (line 9).
     /// With moving friction bounds, linked rows (friction_link.h) are solved with x_F.
     bool solve_step(const std::vector<RowState>& states, std::vector<double>& x) {
-        tight_.assign(static_cast<std::size_t>(n_), 0);
+        ws_.tight.assign(static_cast<std::size_t>(n_), 0);
         x.assign(static_cast<std::size_t>(n_), 0.0);
         if (lcp_.has_moving_bounds()) bounds_from_tight_normals(states);
-        linked_.clear();
+        ws_.linked.clear();
         int tight_count = 0;
         for (int i = 0; i < n_; ++i)
             if (states[i] != RowState::Free) {
-                tight_[i] = 1;
+                ws_.tight[i] = 1;
                 ++tight_count;
-                if (is_linked(i, states)) linked_.push_back(i);  // x_i = 0 until solved with x_F
+                if (is_linked(i, states)) ws_.linked.push_back(i);  // x_i = 0 until solved with x_F
                 else x[i] = value_at(i, states[i]);
             }
         ++counters_.pivots;
         if (settings_.record_steps) counters_.tight_per_step.push_back(tight_count);
         if (!solve_free_rows(x)) return false;
-        if (linked_.empty()) return true;
-        if (!solve_linked_rows(lcp_, solver_, linked_, states, tight_, x)) {
+        if (ws_.linked.empty()) return true;
+        if (!solve_linked_rows(lcp_, solver_, ws_.linked, states, ws_.tight, x)) {
             // singular link: keep the linked rows at the previous iterate's bounds for this step
-            for (int i : linked_) x[i] = value_at(i, states[i]);
-            linked_.clear();
+            for (int i : ws_.linked) x[i] = value_at(i, states[i]);
+            ws_.linked.clear();
             if (!solve_free_rows(x)) return false;
         }
         bounds_from_free_normals(x);
@@ -240,12 +253,12 @@ private:
 
     /// x_F from Eq. 6 with x_T as given in x (linked rows 0), with the loss-of-accuracy guard.
     bool solve_free_rows(std::vector<double>& x) {
-        lcp_.A->multiply(x, lcp_.shift, Ax_);  // A_FT x_T on the free rows (x_F = 0 here)
+        lcp_.A->multiply(x, lcp_.shift, ws_.Ax);  // A_FT x_T on the free rows (x_F = 0 here)
         for (int i = 0; i < n_; ++i)
-            if (!tight_[i]) rhs_x_[i] = lcp_.b[i] - Ax_[i];
+            if (!ws_.tight[i]) ws_.rhs_x[i] = lcp_.b[i] - ws_.Ax[i];
         FactorOutcome outcome = solve_free(x, /*fresh=*/false);
         if (outcome == FactorOutcome::Breakdown) return false;
-        if (outcome == FactorOutcome::Deleted && linked_.empty() && free_residual() > accuracy_limit()) {
+        if (outcome == FactorOutcome::Deleted && ws_.linked.empty() && free_residual() > accuracy_limit()) {
             // MuJoCo-style loss-of-accuracy guard: a deleted factor that misses Eq. 6 by more
             // than a fresh factor would is replaced by a refactorization for this step.
             ++counters_.accuracy_refactors;
@@ -254,6 +267,17 @@ private:
         }
         (outcome == FactorOutcome::Deleted ? counters_.downdate_steps : counters_.refactor_steps) += 1;
         return true;
+    }
+
+    /// Solves for x_F with the right-hand side kept in rhs_x, then refreshes w and the scales.
+    FactorOutcome solve_free(std::vector<double>& x, bool fresh) {
+        ws_.x_free = ws_.rhs_x;  // the strategy overwrites its argument
+        const FactorOutcome outcome = solver_.solve_free(ws_.tight, ws_.x_free, fresh);
+        if (outcome == FactorOutcome::Breakdown) return outcome;
+        for (int i = 0; i < n_; ++i)
+            if (!ws_.tight[i]) x[i] = ws_.x_free[i];
+        refresh_w(x);
+        return outcome;
     }
 
     /// A friction row at a bound whose normal is free: its value moves with the normal.
@@ -273,45 +297,36 @@ private:
     void bounds_from_free_normals(const std::vector<double>& x) {
         for (int i = 0; i < n_; ++i) {
             const int normal = lcp_.friction_normal[i];
-            if (normal >= 0 && !tight_[normal]) set_friction_bound(i, x[normal]);
+            if (normal >= 0 && !ws_.tight[normal]) set_friction_bound(i, x[normal]);
         }
     }
 
     void set_friction_bound(int i, double normal_value) {
-        hi_[i] = lcp_.friction_mu[i] * std::abs(normal_value);
-        lo_[i] = -hi_[i];
+        it().hi[i] = lcp_.friction_mu[i] * std::abs(normal_value);
+        it().lo[i] = -it().hi[i];
     }
 
     /// w = (A + shift I) x - b and the row scales (|A||x| + |b|)_i.
     void refresh_w(const std::vector<double>& x) {
-        w_.resize(static_cast<std::size_t>(n_));
-        scale_.resize(static_cast<std::size_t>(n_));
-        lcp_.A->multiply_with_scale(x.data(), lcp_.shift, w_.data(), scale_.data());
+        std::vector<double>& w = it().w;
+        std::vector<double>& scale = it().scale;
+        w.resize(static_cast<std::size_t>(n_));
+        scale.resize(static_cast<std::size_t>(n_));
+        lcp_.A->multiply_with_scale(x.data(), lcp_.shift, w.data(), scale.data());
         for (int i = 0; i < n_; ++i) {
-            w_[i] -= lcp_.b[i];
-            scale_[i] += std::abs(lcp_.b[i]);
+            w[i] -= lcp_.b[i];
+            scale[i] += std::abs(lcp_.b[i]);
         }
     }
 
-    bool pinned(int i) const { return lo_[i] == hi_[i]; }
-    double value_at(int i, RowState s) const { return s == RowState::AtLo ? lo_[i] : hi_[i]; }
-
-    /// Solves for x_F with the right-hand side kept in rhs_x_, then refreshes w and the scales.
-    FactorOutcome solve_free(std::vector<double>& x, bool fresh) {
-        x_free_ = rhs_x_;  // the strategy overwrites its argument
-        const FactorOutcome outcome = solver_.solve_free(tight_, x_free_, fresh);
-        if (outcome == FactorOutcome::Breakdown) return outcome;
-        for (int i = 0; i < n_; ++i)
-            if (!tight_[i]) x[i] = x_free_[i];
-        refresh_w(x);
-        return outcome;
-    }
+    bool pinned(int i) const { return it().lo[i] == it().hi[i]; }
+    double value_at(int i, RowState s) const { return s == RowState::AtLo ? it().lo[i] : it().hi[i]; }
 
     /// max over free rows of |w_i| / (|A||x| + |b|)_i: Eq. 6's backward error, row by row.
     double free_residual() const {
         double worst = 0;
         for (int i = 0; i < n_; ++i)
-            if (!tight_[i] && w_[i] != 0) worst = std::max(worst, std::abs(w_[i]) / scale_[i]);
+            if (!ws_.tight[i] && it().w[i] != 0) worst = std::max(worst, std::abs(it().w[i]) / it().scale[i]);
         return worst;
     }
 
@@ -319,35 +334,17 @@ private:
     /// the classification tolerance keeps the pivoting decisions unaffected by the factor.
     double accuracy_limit() const { return std::max(0.1 * settings_.tolerance, 100.0 * n_ * kEps); }
 
-    /// Eq. 4 with per-row tolerances: a w-tolerance tol * (|A||x| + |b|)_i and the matching
-    /// x-tolerance divided by the diagonal (A_ii x_i is bounded by the same sum).
+    /// Eq. 4 row by row (classify_row.h).
     const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
         Infeasibility& inf = ws_.inf;
         inf.clear();
         for (int i = 0; i < n_; ++i) {
-            if (pinned(i)) continue;
-            const double diag = lcp_.A->diag(i) + lcp_.shift;
-            const double w_tol = settings_.tolerance * scale_[i];
-            const double x_tol = w_tol / diag;
-            double excess = 0;
-            RowState to = states[i];
-            switch (states[i]) {
-                case RowState::Free:
-                    if (x[i] < lo_[i] - x_tol) { excess = (lo_[i] - x[i]) * diag; to = RowState::AtLo; }
-                    else if (x[i] > hi_[i] + x_tol) { excess = (x[i] - hi_[i]) * diag; to = RowState::AtHi; }
-                    break;
-                case RowState::AtLo:
-                    if (w_[i] < -w_tol) { excess = -w_[i]; to = RowState::Free; }
-                    break;
-                case RowState::AtHi:
-                    if (w_[i] > w_tol) { excess = w_[i]; to = RowState::Free; }
-                    break;
-            }
-            if (to != states[i]) {
-                inf.rows.push_back(i);
-                inf.flip_to.push_back(to);
-                inf.violation += excess;
-            }
+            const RowVerdict v = classify_row(states[i], x[i], it().w[i], it().lo[i], it().hi[i],
+                                              lcp_.A->diag(i) + lcp_.shift, it().scale[i], settings_.tolerance);
+            if (v.to == states[i]) continue;
+            inf.rows.push_back(i);
+            inf.flip_to.push_back(v.to);
+            inf.violation += v.excess;
         }
         return inf;
     }
@@ -372,37 +369,26 @@ private:
         if (inf.count() > best_count_ || (inf.count() == best_count_ && inf.violation >= best_violation_)) return;
         best_count_ = inf.count();
         best_violation_ = inf.violation;
-        best_states_ = states;
-        best_inf_ = inf;
-        best_x_ = x;
-        best_w_ = w_;
-        if (lcp_.has_moving_bounds()) {
-            best_lo_ = lo_;
-            best_hi_ = hi_;
-        }
+        ws_.best.take(states, x, it());
+        ws_.best_inf = inf;
     }
 
     /// The least infeasible iterate, projected onto [lo, hi]; a free row pushed onto a bound is
-    /// recorded at that bound so that the index set describes x.
-    void restore_best(std::vector<RowState>& states, std::vector<double>& x) {
-        states = best_states_;
-        x = best_x_;
-        w_ = best_w_;
-        if (lcp_.has_moving_bounds()) {
-            lo_ = best_lo_;
-            hi_ = best_hi_;
-        }
+    /// recorded at that bound so that the index set describes x. Returns outcome.
+    LoopOutcome give_best(std::vector<RowState>& states, std::vector<double>& x, LoopOutcome outcome) {
+        ws_.best.give(states, x, it());
         for (int i = 0; i < n_; ++i) {
-            if (x[i] < lo_[i]) { x[i] = lo_[i]; states[i] = RowState::AtLo; }
-            else if (x[i] > hi_[i]) { x[i] = hi_[i]; states[i] = RowState::AtHi; }
+            if (x[i] < it().lo[i]) { x[i] = it().lo[i]; states[i] = RowState::AtLo; }
+            else if (x[i] > it().hi[i]) { x[i] = it().hi[i]; states[i] = RowState::AtHi; }
         }
         orient_pinned_rows(states);
+        return outcome;
     }
 
     /// A pinned row is at both bounds; report it at the one its w supports (w >= 0: at lo).
     void orient_pinned_rows(std::vector<RowState>& states) const {
         for (int i = 0; i < n_; ++i)
-            if (pinned(i)) states[i] = w_[i] >= 0 ? RowState::AtLo : RowState::AtHi;
+            if (pinned(i)) states[i] = it().w[i] >= 0 ? RowState::AtLo : RowState::AtHi;
     }
 
     const BoxedLcp& lcp_;
@@ -410,20 +396,10 @@ private:
     const PivotSettings& settings_;
     PivotCounters& counters_;
     const int n_;
-    Workspace& ws_ = thread_workspace();
-    std::vector<char>& tight_ = ws_.tight;
-    std::vector<double>&Ax_ = ws_.Ax, &w_ = ws_.w, &scale_ = ws_.scale, &x_free_ = ws_.x_free, &rhs_x_ = ws_.rhs_x;
+    Workspace& ws_;
     int steps_taken_ = 0;  ///< solves of Eq. 6 made by the latest pivot()
     int best_count_ = 0;
     double best_violation_ = std::numeric_limits<double>::infinity();
-    std::vector<RowState>& best_states_ = ws_.best_states;
-    Infeasibility& best_inf_ = ws_.best_inf;
-    std::vector<double>&best_x_ = ws_.best_x, &best_w_ = ws_.best_w;
-    std::vector<double>&lo_ = ws_.lo, &hi_ = ws_.hi;  ///< the bounds in force (moving friction bounds change)
-    std::vector<double>&best_lo_ = ws_.best_lo, &best_hi_ = ws_.best_hi;
-    std::vector<int>& linked_ = ws_.linked;  ///< linked friction rows of the current step
-    std::vector<std::uint64_t>& visited_hash_ = ws_.visited_hash;
-    std::vector<RowState>& visited_ = ws_.visited;
 };
 
 }  // namespace

@@ -1,0 +1,46 @@
+// Eq. 4 for one row, with the per-row tolerances every pivoting loop uses (pivot_loop.cpp and
+// small_island.cpp classify alike, so that both accept the same answers).
+#pragma once
+
+#include "ode_bpp/solver.h"
+
+namespace ode_bpp::pivoting {
+
+/// Where Eq. 4 moves one row, and by how much it breaks its condition (in units of w).
+struct RowVerdict {
+    RowState to;           ///< the row's next state (its current one when it is feasible)
+    double excess = 0;     ///< (lo - x) A_ii, (x - hi) A_ii, -w or w for an infeasible row
+};
+
+/// Row i in state s at x_i with w_i = (A x - b)_i and bounds [lo, hi]: a free row outside its
+/// bounds by more than the x-tolerance goes to that bound; a tight row whose w has the wrong sign
+/// beyond the w-tolerance goes free. The w-tolerance is tol * scale (scale = (|A||x| + |b|)_i,
+/// never an absolute constant) and the x-tolerance the same divided by the diagonal diag (A_ii x_i
+/// is bounded by the same sum). A row pinned at lo = hi is never infeasible.
+inline RowVerdict classify_row(RowState s, double x, double w, double lo, double hi, double diag, double scale,
+                               double tol) {
+    if (lo == hi) return {s};
+    const double w_tol = tol * scale;
+    const double x_tol = w_tol / diag;
+    switch (s) {
+        case RowState::Free:
+            if (x < lo - x_tol) return {RowState::AtLo, (lo - x) * diag};
+            if (x > hi + x_tol) return {RowState::AtHi, (x - hi) * diag};
+            break;
+        case RowState::AtLo:
+            if (w < -w_tol) return {RowState::Free, -w};
+            break;
+        case RowState::AtHi:
+            if (w > w_tol) return {RowState::Free, w};
+            break;
+    }
+    return {s};
+}
+
+/// The multiplier of a tight row with the wrong sign (w > 0 at hi, w < 0 at lo), else 0: what
+/// the polish of a converged index set frees beyond the factor's accuracy (pivot_loop.cpp).
+inline double wrong_sign(RowState s, double w) {
+    return s == RowState::AtHi ? w : s == RowState::AtLo ? -w : 0.0;
+}
+
+}  // namespace ode_bpp::pivoting

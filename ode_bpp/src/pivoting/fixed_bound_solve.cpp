@@ -1,0 +1,116 @@
+#include "pivoting/fixed_bound_solve.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "pivoting/tuning.h"
+
+namespace ode_bpp::pivoting {
+
+FixedBoundSolver::FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,
+                                   PivotCounters& counters)
+    : lcp_(lcp), solver_(solver), options_(options), counters_(counters), regularization_(max_diag) {}
+
+FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<double>& x, int budget) {
+    start_ = states;
+    if (!continuation_done_) run_continuation(states, x, budget);
+    for (;;) {
+        if (prepare(shift())) {
+            const LoopOutcome outcome = at_target(states, x, budget);
+            if (outcome == LoopOutcome::Converged) return FixedOutcome::Converged;
+            if (outcome != LoopOutcome::Breakdown) return FixedOutcome::BudgetSpent;
+        }
+        if (!regularization_.raise_target()) return FixedOutcome::NotSpd;
+        states = start_;
+    }
+}
+
+/// The plain loop gets Options::rescue_after steps; if it has not converged by then, the rescue
+/// starts afresh from the warm start with the rest of the budget, and should it give up, the
+/// plain loop resumes from its least infeasible index set. Converged, MaxIterations or Breakdown.
+LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vector<double>& x, int budget) {
+    const int first = counters_.pivots;
+    const auto left = [&] { return budget - (counters_.pivots - first); };
+    const bool rescue_allowed = options_.rescue_after > 0;
+    LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, options_.rescue_after) : budget),
+                                             states, x, counters_);
+    if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
+    outcome = rescue(states, x, left());
+    if (outcome != LoopOutcome::Stalled) return outcome;
+    if (!prepare(shift())) return LoopOutcome::Breakdown;
+    if (left() <= 0) return LoopOutcome::MaxIterations;
+    return pivot_fixed_bounds(lcp_, solver_, settings(left()), states, x, counters_);
+}
+
+/// The rescue continuation (regularization.h): stages on A + delta I, the first from the warm
+/// start, each later one from the last converged stage's index set, at most `budget` steps.
+/// Converged (states, x: the answer on the target), Breakdown, or Stalled when it gives up,
+/// leaving states and x as they came in and the solver prepared for another delta.
+LoopOutcome FixedBoundSolver::rescue(std::vector<RowState>& states, std::vector<double>& x, int budget) {
+    entry_states_ = states;
+    entry_x_ = x;
+    const int first = counters_.pivots;
+    PivotSettings stage = settings(budget);
+    const int murty_after = std::max(0, options_.murty_after);
+    stage.stall_after = murty_after > std::numeric_limits<int>::max() - tuning::kMurtyPatience
+                            ? 0  // no stall count: revisits alone end a stage
+                            : murty_after + tuning::kMurtyPatience;
+    std::vector<RowState> accepted = start_, trial;
+    RescueSchedule schedule(regularization_);
+    while (counters_.pivots - first < budget) {
+        if (!prepare(schedule.delta())) return LoopOutcome::Breakdown;
+        stage.max_pivots = budget - (counters_.pivots - first);
+        trial = accepted;
+        const int before = counters_.pivots;
+        const LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, stage, trial, x, counters_);
+        if (outcome == LoopOutcome::Breakdown) return outcome;
+        if (outcome == LoopOutcome::Converged) {
+            accepted.swap(trial);
+            if (schedule.at_target()) {
+                states = accepted;
+                ++counters_.rescues;
+                return outcome;
+            }
+            schedule.converged(counters_.pivots - before);
+        } else if (!schedule.stalled()) {
+            break;
+        }
+    }
+    states = entry_states_;
+    x = entry_x_;
+    return LoopOutcome::Stalled;
+}
+
+/// Options::continuation_stages solves on A + delta_k I before the first fixed-bound solve,
+/// each from the last one's index set; later solves start warm anyway.
+void FixedBoundSolver::run_continuation(std::vector<RowState>& states, std::vector<double>& x, int budget) {
+    continuation_done_ = true;
+    const int stages = options_.continuation_stages;
+    for (int k = 0; k < stages; ++k) {
+        const double delta = regularization_.continuation(k, stages);
+        if (delta <= shift() || !prepare(delta)) break;
+        std::vector<RowState> trial = states;
+        if (pivot_fixed_bounds(lcp_, solver_, settings(budget), trial, x, counters_) == LoopOutcome::Breakdown) break;
+        states.swap(trial);
+    }
+}
+
+bool FixedBoundSolver::prepare(double shift) {
+    lcp_.shift = shift;
+    if (prepared_ == shift) return true;
+    prepared_.reset();
+    if (!solver_.prepare(shift)) return false;
+    prepared_ = shift;
+    return true;
+}
+
+PivotSettings FixedBoundSolver::settings(int budget) const {
+    PivotSettings s;
+    s.max_pivots = budget;
+    s.murty_after = std::max(0, options_.murty_after);
+    s.tolerance = options_.tolerance;
+    s.record_steps = options_.record_steps;
+    return s;
+}
+
+}  // namespace ode_bpp::pivoting

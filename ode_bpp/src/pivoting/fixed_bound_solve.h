@@ -1,0 +1,62 @@
+// One fixed-bound solve of a BPP method: the boxed LCP with its bounds as they stand (paper
+// Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
+// decides: the plain attempt from the warm start, the rescue continuation where that does not
+// converge within Options::rescue_after steps, the plain loop again where the rescue gives up,
+// and all of it again one rung up the breakdown ladder after a Cholesky breakdown.
+//
+// Index space: the permuted space of the BoxedLcp and its FreeSolver.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "ode_bpp/solver.h"
+#include "pivoting/boxed_lcp.h"
+#include "pivoting/free_solver.h"
+#include "pivoting/pivot_loop.h"
+#include "pivoting/regularization.h"
+
+namespace ode_bpp::pivoting {
+
+/// How a fixed-bound solve ended.
+enum class FixedOutcome {
+    Converged,    ///< x solves (A + shift() I, b, lo, hi) to the tolerance
+    BudgetSpent,  ///< the pivot budget ran out; x is the least infeasible iterate, within bounds
+    NotSpd,       ///< a Cholesky breakdown even on the last rung of the ladder
+};
+
+class FixedBoundSolver {
+public:
+    /// lcp: the problem (its shift is set here); solver: a factor strategy on lcp.A; options:
+    /// murty_after, tolerance, record_steps, rescue_after, continuation_stages; max_diag:
+    /// max_i A_ii; counters: accumulated over every solve.
+    FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,
+                     PivotCounters& counters);
+
+    /// Solves from `states` (in: the warm start; out: the final index set) within `budget` pivot
+    /// steps of the target problem. x: out, n entries.
+    FixedOutcome solve(std::vector<RowState>& states, std::vector<double>& x, int budget);
+
+    /// delta of the problem every answer solves: 0 unless a breakdown raised it.
+    double shift() const { return regularization_.target(); }
+
+private:
+    LoopOutcome at_target(std::vector<RowState>& states, std::vector<double>& x, int budget);
+    LoopOutcome rescue(std::vector<RowState>& states, std::vector<double>& x, int budget);
+    void run_continuation(std::vector<RowState>& states, std::vector<double>& x, int budget);
+    /// Factors A + shift I unless the solver already holds that factor; false on breakdown.
+    bool prepare(double shift);
+    PivotSettings settings(int budget) const;
+
+    BoxedLcp& lcp_;
+    FreeSolver& solver_;
+    const Options& options_;
+    PivotCounters& counters_;
+    Regularization regularization_;
+    std::optional<double> prepared_;       ///< the shift the solver holds a factor of
+    bool continuation_done_ = false;       ///< the up-front continuation runs before the first solve only
+    std::vector<RowState> start_, entry_states_;  ///< warm start of a solve; states entering a rescue
+    std::vector<double> entry_x_;
+};
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,149 @@
+#include "pivoting/friction_policy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "pivoting/friction_lcp.h"
+#include "pivoting/friction_update.h"
+#include "pivoting/lemke.h"
+#include "pivoting/tuning.h"
+
+namespace ode_bpp::pivoting {
+
+PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const FrictionSet& friction, int budget,
+                           std::vector<RowState>& states, std::vector<double>& x) {
+    const auto outcome = [](FixedOutcome o) {
+        return o == FixedOutcome::NotSpd ? PolicyOutcome::NotSpd
+               : o == FixedOutcome::BudgetSpent ? PolicyOutcome::BudgetSpent
+                                                : PolicyOutcome::Converged;
+    };
+    if (friction.empty()) return outcome(fixed.solve(states, x, budget));
+    const std::vector<RowState> requested = states;
+    friction.set_bounds(lcp, std::vector<double>(friction.size(), 0.0));
+    const FixedOutcome frictionless = fixed.solve(states, x, budget);
+    if (frictionless == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
+    friction.set_bounds(lcp, friction.targets(x));
+    for (int i : friction.rows) states[i] = requested[i];
+    const FixedOutcome frozen = fixed.solve(states, x, budget);
+    if (frozen == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
+    return frictionless == FixedOutcome::BudgetSpent ? PolicyOutcome::BudgetSpent : outcome(frozen);
+}
+
+PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vector<double>& x) {
+    if (options_.link_friction && !options_.warm_start.empty() && !friction_.empty()) {
+        const std::vector<RowState> warm = states;
+        friction_.set_bounds(lcp_, friction_.mu);  // placeholders: every step sets them from the normals first
+        Stage stage = linked_solve(states, x, /*from_answer=*/false);
+        if (stage != Stage::Unfinished) return stage == Stage::Finished ? PolicyOutcome::Converged : PolicyOutcome::NotSpd;
+        states = warm;
+        stage = lemke(states, x);
+        if (stage != Stage::Unfinished) return stage == Stage::Finished ? PolicyOutcome::Converged : PolicyOutcome::NotSpd;
+    }
+    const PolicyOutcome frozen = solve_frozen(fixed_, lcp_, friction_, budget(), states, x);
+    if (frozen == PolicyOutcome::NotSpd || friction_.empty()) return frozen;
+    bool budget_spent = frozen == PolicyOutcome::BudgetSpent;
+    if (options_.link_friction) {
+        for (const bool from_lemke : {false, true}) {
+            const Stage stage = from_lemke ? lemke(states, x) : linked_solve(states, x, /*from_answer=*/true);
+            if (stage != Stage::Unfinished) return stage == Stage::Finished ? PolicyOutcome::Converged : PolicyOutcome::NotSpd;
+        }
+        // the outer rounds go on from the linked solve's least infeasible iterate (96.3 % against
+        // 92 % from the Frozen answer) and re-solve with its bounds fixed first: that iterate may
+        // be consistent in its friction but not yet a solution of the other rows
+        friction_.set_bounds(lcp_, friction_.targets(x));
+        ++rounds_;
+        const FixedOutcome o = fixed_.solve(states, x, budget());
+        if (o == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
+        budget_spent = budget_spent || o == FixedOutcome::BudgetSpent;
+    }
+    return outer_rounds(states, x, budget_spent);
+}
+
+/// Outer rounds until every friction row is consistent with the bound its own normal implies,
+/// or Options::max_friction_rounds. budget_spent: an earlier fixed-bound solve of this answer ran
+/// out of steps (its status then says so).
+PolicyOutcome ConsistentFriction::outer_rounds(std::vector<RowState>& states, std::vector<double>& x, bool budget_spent) {
+    const double d = options_.friction_damping > 0 && options_.friction_damping <= 1 ? options_.friction_damping : 1.0;
+    FrictionBoundUpdate update(d);
+    for (;;) {
+        if (friction_.consistent(lcp_, options_.tolerance, states, x))
+            return budget_spent ? PolicyOutcome::BudgetSpent : PolicyOutcome::Converged;
+        if (rounds_ >= options_.max_friction_rounds)
+            return budget_spent ? PolicyOutcome::BudgetSpent : PolicyOutcome::FrictionInconsistent;
+        friction_.set_bounds(lcp_, update.next(friction_.bounds(lcp_), friction_.targets(x)));
+        ++rounds_;
+        const FixedOutcome o = fixed_.solve(states, x, budget());
+        if (o == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
+        budget_spent = budget_spent || o == FixedOutcome::BudgetSpent;
+    }
+}
+
+/// A solve with moving friction bounds (friction_link.h) from states, with kLinkedBudgetFactor
+/// times the pivot budget. from_answer: start from the bounds mu |x_n| of the answer in x (else
+/// from the bounds already set). Finished when it converged to a consistent answer.
+ConsistentFriction::Stage ConsistentFriction::linked_solve(std::vector<RowState>& states, std::vector<double>& x,
+                                                           bool from_answer) {
+    if (from_answer) friction_.set_bounds(lcp_, friction_.targets(x));
+    friction_.link(lcp_);
+    ++counters_.linked_solves;
+    const FixedOutcome o = fixed_.solve(states, x, tuning::kLinkedBudgetFactor * budget());
+    lcp_.friction_normal.clear();
+    lcp_.friction_mu.clear();
+    if (o == FixedOutcome::NotSpd) return Stage::NotSpd;
+    return o == FixedOutcome::Converged && friction_.consistent(lcp_, options_.tolerance, states, x) ? Stage::Finished
+                                                                                                   : Stage::Unfinished;
+}
+
+/// Lemke's method on the friction LCP (a copositive LCP, which Lemke solves where block pivoting
+/// with moving bounds cycles), then a linked solve from the index set of its answer, which
+/// certifies it to the loop's own tolerance (usually in one step). Runs once per solve;
+/// Unfinished leaves states and x as they came in.
+ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& states, std::vector<double>& x) {
+    if (lemke_tried_ || !options_.lemke_friction) return Stage::Unfinished;
+    lemke_tried_ = true;
+    if (lcp_.n() > tuning::kLemkeMaxRows || lemke_variables_at_most() > tuning::kLemkeMaxVariables) {
+        note_ = "Lemke stage skipped: the island is too large for a dense LCP";
+        return Stage::Unfinished;
+    }
+    std::string why;
+    const std::optional<FrictionLcp> lcp = FrictionLcp::build(lcp_, friction_.view(), why);
+    if (!lcp) {
+        note_ = "Lemke stage skipped: " + why;
+        return Stage::Unfinished;
+    }
+    const int size = static_cast<int>(lcp->q().size());
+    LemkeSolution s;
+    for (int attempt = 0; attempt < tuning::kLemkeAttempts && s.outcome != LemkeOutcome::Solved; ++attempt) {
+        s = solve_lemke(lcp->M(), lcp->q(), spread_covering_vector(size, attempt),
+                        tuning::kLemkePivotsPerVariable * size + 10);
+        lemke_pivots_ += s.pivots;
+    }
+    if (s.outcome != LemkeOutcome::Solved) {
+        note_ = s.outcome == LemkeOutcome::RayTermination ? "Lemke stage ended on a ray" : "Lemke stage ran out of pivots";
+        return Stage::Unfinished;
+    }
+    std::vector<RowState> lemke_states;
+    std::vector<double> lemke_x;
+    lcp->recover(s, lemke_x, lemke_states);
+    if (!std::all_of(lemke_x.begin(), lemke_x.end(), [](double v) { return std::isfinite(v); })) {
+        note_ = "Lemke's answer was not finite";
+        return Stage::Unfinished;
+    }
+    const Stage certified = linked_solve(lemke_states, lemke_x, /*from_answer=*/true);
+    if (certified == Stage::Unfinished) note_ = "Lemke's answer did not pass the linked solve";
+    if (certified != Stage::Finished) return certified;
+    states = lemke_states;
+    x = lemke_x;
+    return Stage::Finished;
+}
+
+/// 3 variables per friction row, 2 per other row bounded on both sides, 1 per one-sided row.
+int ConsistentFriction::lemke_variables_at_most() const {
+    int count = static_cast<int>(friction_.size());  // + 2 each below: their bounds are finite
+    for (int i = 0; i < lcp_.n(); ++i)
+        if (!lcp_.always_free[i]) count += std::isfinite(lcp_.lo[i]) && std::isfinite(lcp_.hi[i]) ? 2 : 1;
+    return count;
+}
+
+}  // namespace ode_bpp::pivoting

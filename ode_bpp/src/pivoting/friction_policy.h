@@ -1,0 +1,77 @@
+// How friction bounds follow the normal impulses (Options::friction), as ordered stages of
+// fixed-bound solves (fixed_bound_solve.h), each returning what it achieved.
+//
+// Index space: the permuted space of the solve.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ode_bpp/solver.h"
+#include "pivoting/boxed_lcp.h"
+#include "pivoting/fixed_bound_solve.h"
+#include "pivoting/friction_set.h"
+
+namespace ode_bpp::pivoting {
+
+/// What a friction policy made of the problem; the answer is in its states and x either way.
+enum class PolicyOutcome {
+    Converged,             ///< every row satisfies Eq. 4 (Consistent: with bounds from its own normals)
+    BudgetSpent,           ///< a fixed-bound solve of the answer ran out of pivot steps
+    FrictionInconsistent,  ///< Consistent: the bounds still moved after Options::max_friction_rounds
+    NotSpd,                ///< a Cholesky breakdown even on the largest regularization
+};
+
+/// Dantzig's semantics (ODE lcp.cpp): every friction row held at 0 while the others are solved,
+/// then bounds +-|mu x_normal| from those normals, kept fixed for a second solve that starts the
+/// friction rows from their requested states. Without friction rows, one solve.
+PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const FrictionSet& friction, int budget,
+                           std::vector<RowState>& states, std::vector<double>& x);
+
+/// Consistent friction: every friction impulse within mu times its *own* normal. Stages, in order:
+///  1. with a warm start, a linked solve straight from it (friction bounds moving with the
+///     normals inside every pivot step, friction_link.h), then Lemke's method on the friction LCP
+///     (friction_lcp.h) certified by a linked solve;
+///  2. the Frozen answer, a linked solve from it, then the Lemke stage if it has not run;
+///  3. damped, Anderson-accelerated outer rounds of fixed-bound solves (friction_update.h) from
+///     the best iterate, until every friction row is consistent with its own normal.
+/// The outer rounds converge only while the map from bounds to normals contracts, which the
+/// capstan effect of a chain on a drum breaks; the linked solve and Lemke are what finish those
+/// (docs/tuning.md has the measurements behind the order).
+class ConsistentFriction {
+public:
+    ConsistentFriction(FixedBoundSolver& fixed, BoxedLcp& lcp, const FrictionSet& friction, const Options& options,
+                       PivotCounters& counters)
+        : fixed_(fixed), lcp_(lcp), friction_(friction), options_(options), counters_(counters) {}
+
+    PolicyOutcome solve(std::vector<RowState>& states, std::vector<double>& x);
+
+    int rounds() const { return rounds_; }              ///< outer bound updates taken
+    int lemke_pivots() const { return lemke_pivots_; }  ///< complementary pivots of the Lemke stage
+    const std::string& note() const { return note_; }   ///< why the Lemke stage did not finish, if it ran
+
+private:
+    /// A stage either finished the problem (a certified consistent answer in states and x),
+    /// left it unfinished (states and x: its least infeasible iterate, or as they came in), or
+    /// met a breakdown even on the largest regularization.
+    enum class Stage { Finished, Unfinished, NotSpd };
+
+    Stage linked_solve(std::vector<RowState>& states, std::vector<double>& x, bool from_answer);
+    Stage lemke(std::vector<RowState>& states, std::vector<double>& x);
+    PolicyOutcome outer_rounds(std::vector<RowState>& states, std::vector<double>& x, bool budget_spent);
+    int budget() const { return std::max(1, options_.max_pivots); }
+    /// An upper bound of the friction LCP's size (friction_lcp.h).
+    int lemke_variables_at_most() const;
+
+    FixedBoundSolver& fixed_;
+    BoxedLcp& lcp_;
+    const FrictionSet& friction_;
+    const Options& options_;
+    PivotCounters& counters_;
+    int rounds_ = 0;
+    int lemke_pivots_ = 0;
+    bool lemke_tried_ = false;
+    std::string note_;
+};
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,312 @@
+#include "pivoting/small_island.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "linalg/dense_cholesky.h"
+#include "ode_bpp/residuals.h"
+#include "pivoting/classify_row.h"
+
+namespace ode_bpp::pivoting {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+/// Polish rounds after convergence and the steps each may take, as in pivot_loop.cpp.
+constexpr int kPolishRounds = 2;
+constexpr int kPolishSteps = 6;
+
+/// Infeasible rows of one iterate (ascending index) and their total violation.
+struct Infeasible {
+    std::vector<int> rows;
+    std::vector<RowState> flip_to;
+    double violation = 0;
+    int count() const { return static_cast<int>(rows.size()); }
+};
+
+/// Buffers of one solve, kept per thread so that their capacity outlives it: a warm solve of a
+/// small island allocates nothing. One solve at a time per thread (nothing here starts another).
+struct Workspace {
+    std::vector<double> factor;   ///< n x n, row stride n: A_FF, then L_FF, in its leading block
+    std::vector<double> diagonal, rhs, lo, hi, w, scale;
+    std::vector<int> free;
+    std::vector<RowState> requested, best_states, trial, kept_states;
+    std::vector<double> kept_x, kept_w, kept_scale;
+    Infeasible inf, best_inf;
+};
+
+// noinline: inlined, GCC re-derives a thread_local's address at every use (symmetric_rows.cpp)
+[[gnu::noinline]] Workspace& thread_workspace() {
+    thread_local Workspace workspace;
+    return workspace;
+}
+
+/// A(i, j) of the symmetric A from the lower triangle of the dense form.
+double entry(const Problem& p, int i, int j) {
+    return i >= j ? p.A[static_cast<std::ptrdiff_t>(i) * p.lda + j] : p.A[static_cast<std::ptrdiff_t>(j) * p.lda + i];
+}
+
+bool is_friction_row(const Problem& p, int i) { return p.findex != nullptr && p.findex[i] >= 0; }
+
+/// Block principal pivoting on the fixed bounds ws.lo, ws.hi (Alg. 1 with Eq. 4), one
+/// refactorization of A_FF per step.
+class SmallIsland {
+public:
+    SmallIsland(const Problem& p, const Options& o, Workspace& ws, Result& r) : p_(p), o_(o), ws_(ws), r_(r), n_(p.n) {
+        ws_.factor.resize(static_cast<std::size_t>(n_) * n_);
+        for (auto* v : {&ws_.diagonal, &ws_.rhs, &ws_.w, &ws_.scale}) v->resize(static_cast<std::size_t>(n_));
+        ws_.free.resize(static_cast<std::size_t>(n_));
+    }
+
+    /// Frozen friction (Dantzig's semantics, as the driver's solve_frozen): friction rows held at
+    /// 0 while the rest is solved, then bounds +-|mu x_normal| from those normals, kept fixed for a
+    /// second solve that starts the friction rows from their requested states.
+    bool solve(std::vector<RowState>& states, std::vector<double>& x) {
+        set_fixed_bounds();
+        const bool friction = p_.findex != nullptr && std::any_of(p_.findex, p_.findex + n_, [](int f) { return f >= 0; });
+        if (!friction) return converges(states, x);
+        ws_.requested = states;
+        for (int i = 0; i < n_; ++i)
+            if (is_friction_row(p_, i)) ws_.lo[i] = ws_.hi[i] = 0;
+        if (!converges(states, x)) return false;
+        for (int i = 0; i < n_; ++i) {
+            if (!is_friction_row(p_, i)) continue;
+            const double normal = x[p_.findex[i]];
+            ws_.hi[i] = normal == 0 ? 0.0 : std::abs(p_.hi[i] * normal);
+            ws_.lo[i] = -ws_.hi[i];
+            states[i] = ws_.requested[i];
+        }
+        return converges(states, x);
+    }
+
+private:
+    /// Bounds of the rows that keep them: rows below nub unbounded, others as given.
+    void set_fixed_bounds() {
+        ws_.lo.resize(static_cast<std::size_t>(n_));
+        ws_.hi.resize(static_cast<std::size_t>(n_));
+        for (int i = 0; i < n_; ++i) {
+            const bool unbounded = i < p_.nub;
+            ws_.lo[i] = unbounded ? -kInf : p_.lo[i];
+            ws_.hi[i] = unbounded ? kInf : p_.hi[i];
+        }
+    }
+
+    /// One fixed-bound solve to convergence and its polish, within the pivot budget.
+    bool converges(std::vector<RowState>& states, std::vector<double>& x) {
+        const int budget = std::max(1, o_.max_pivots);
+        int steps = 0;
+        if (!pivot(states, x, budget, steps)) return false;
+        polish(states, x, budget - steps);
+        return true;
+    }
+
+    /// Rows that must be free are free, pinned rows tight, a tight state at an infinite bound
+    /// free (as PivotLoop::normalize).
+    void normalize(std::vector<RowState>& states) const {
+        states.resize(static_cast<std::size_t>(n_), RowState::Free);
+        for (int i = 0; i < n_; ++i) {
+            RowState& s = states[i];
+            const double lo = ws_.lo[i], hi = ws_.hi[i];
+            if (s != RowState::AtLo && s != RowState::AtHi) s = RowState::Free;
+            if (lo == hi) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
+            else if (s == RowState::AtLo && std::isinf(lo)) s = RowState::Free;
+            else if (s == RowState::AtHi && std::isinf(hi)) s = RowState::Free;
+        }
+    }
+
+    /// At most max_steps block steps from states (Júdice-Pires: the count of infeasible rows must
+    /// fall within murty_after steps, else Murty's single pivot on the largest infeasible index);
+    /// true when an index set satisfies Eq. 4 in every row. steps: out, the steps taken.
+    bool pivot(std::vector<RowState>& states, std::vector<double>& x, int max_steps, int& steps) {
+        normalize(states);
+        int least_count = n_ + 1;
+        int block_steps_left = std::max(0, o_.murty_after);
+        bool in_murty = false;
+        best_count_ = n_ + 1;
+        for (steps = 0; steps < max_steps;) {
+            ++steps;
+            if (!solve_step(states, x)) return false;
+            const Infeasible& inf = classify(states, x);
+            remember_if_best(inf, states);
+            if (inf.count() == 0) {
+                orient_pinned_rows(states);
+                return true;
+            }
+            if (inf.count() < least_count) {
+                least_count = inf.count();
+                block_steps_left = std::max(0, o_.murty_after);
+                in_murty = false;
+                flip_all(inf, states);
+            } else if (block_steps_left > 0) {
+                --block_steps_left;
+                flip_all(inf, states);
+            } else if (!in_murty) {
+                in_murty = true;  // Murty's phase starts from the least infeasible set, as in pivot_loop.cpp
+                states = ws_.best_states;
+                flip_largest(ws_.best_inf, states);
+            } else {
+                flip_largest(inf, states);
+            }
+        }
+        return false;
+    }
+
+    /// Eq. 6 densely: x_T at its bounds, L_FF L_FF^T = A_FF, x_F = A_FF^-1 (b_F - A_FT x_T); then
+    /// w = A x - b and the row scales. False when a Cholesky pivot breaks down.
+    bool solve_step(const std::vector<RowState>& states, std::vector<double>& x) {
+        int nf = 0, tight = 0;
+        for (int i = 0; i < n_; ++i) {
+            if (states[i] == RowState::Free) {
+                ws_.free[nf++] = i;
+                x[i] = 0;
+            } else {
+                x[i] = states[i] == RowState::AtLo ? ws_.lo[i] : ws_.hi[i];
+                ++tight;
+            }
+        }
+        ++r_.pivots;
+        ++r_.refactor_steps;
+        if (o_.record_steps) r_.tight_per_step.push_back(tight);
+        if (nf > 0 && !solve_free(x, nf)) return false;
+        refresh_w(x);
+        return true;
+    }
+
+    bool solve_free(std::vector<double>& x, int nf) {
+        const int* free = ws_.free.data();
+        double* a = ws_.factor.data();
+        for (int k = 0; k < nf; ++k) {
+            const int i = free[k];
+            double rhs = p_.b[i];
+            for (int j = 0; j < n_; ++j)
+                if (x[j] != 0) rhs -= entry(p_, i, j) * x[j];  // A_FT x_T: x_F is still 0
+            ws_.rhs[k] = rhs;
+            double* row = a + static_cast<std::ptrdiff_t>(k) * n_;
+            for (int l = 0; l < k; ++l) row[l] = p_.A[static_cast<std::ptrdiff_t>(i) * p_.lda + free[l]];
+            row[k] = ws_.diagonal[k] = p_.A[static_cast<std::ptrdiff_t>(i) * p_.lda + i];
+        }
+        if (linalg::dense_cholesky(a, nf, n_, ws_.diagonal.data()) >= 0) return false;
+        linalg::dense_cholesky_solve(a, nf, n_, ws_.rhs.data());
+        for (int k = 0; k < nf; ++k) x[free[k]] = ws_.rhs[k];
+        return true;
+    }
+
+    /// w = A x - b and the row scales |A||x| + |b| (residuals.h).
+    void refresh_w(const std::vector<double>& x) { residual_vectors(p_, ConstStrided{x.data(), 1}, ws_.w, ws_.scale); }
+
+    const Infeasible& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
+        Infeasible& inf = ws_.inf;
+        inf.rows.clear();
+        inf.flip_to.clear();
+        inf.violation = 0;
+        for (int i = 0; i < n_; ++i) {
+            const RowVerdict v = classify_row(states[i], x[i], ws_.w[i], ws_.lo[i], ws_.hi[i],
+                                              p_.A[static_cast<std::ptrdiff_t>(i) * p_.lda + i], ws_.scale[i], o_.tolerance);
+            if (v.to == states[i]) continue;
+            inf.rows.push_back(i);
+            inf.flip_to.push_back(v.to);
+            inf.violation += v.excess;
+        }
+        return inf;
+    }
+
+    static void flip_all(const Infeasible& inf, std::vector<RowState>& states) {
+        for (int k = 0; k < inf.count(); ++k) states[inf.rows[k]] = inf.flip_to[k];
+    }
+
+    /// Murty's rule in the driver's orientation: only the infeasible row of largest index moves.
+    void flip_largest(const Infeasible& inf, std::vector<RowState>& states) {
+        ++r_.murty_pivots;
+        states[inf.rows.back()] = inf.flip_to.back();
+    }
+
+    void remember_if_best(const Infeasible& inf, const std::vector<RowState>& states) {
+        if (inf.count() > best_count_ || (inf.count() == best_count_ && inf.violation >= best_violation_)) return;
+        best_count_ = inf.count();
+        best_violation_ = inf.violation;
+        ws_.best_states = states;
+        ws_.best_inf = inf;
+    }
+
+    /// As PivotLoop::polish: tight rows whose multiplier has the wrong sign beyond the factor's
+    /// accuracy go free and the loop resumes; the new answer stands only if it converges too.
+    void polish(std::vector<RowState>& states, std::vector<double>& x, int budget) {
+        const double limit = std::max(0.1 * o_.tolerance, 100.0 * n_ * kEps);
+        for (int round = 0; round < kPolishRounds && budget > 0; ++round) {
+            ws_.trial = states;
+            bool any = false;
+            for (int i = 0; i < n_; ++i) {
+                if (ws_.lo[i] == ws_.hi[i] || wrong_sign(states[i], ws_.w[i]) <= limit * ws_.scale[i]) continue;
+                ws_.trial[i] = RowState::Free;
+                any = true;
+            }
+            if (!any) return;
+            keep(states, x);
+            int steps = 0;
+            const bool converged = pivot(ws_.trial, x, std::min(kPolishSteps, budget), steps);
+            budget -= steps;
+            if (!converged) {
+                restore_kept(states, x);
+                return;
+            }
+            states.swap(ws_.trial);
+        }
+    }
+
+    void keep(const std::vector<RowState>& states, const std::vector<double>& x) {
+        ws_.kept_states = states;
+        ws_.kept_x = x;
+        ws_.kept_w = ws_.w;
+        ws_.kept_scale = ws_.scale;
+    }
+
+    void restore_kept(std::vector<RowState>& states, std::vector<double>& x) {
+        states = ws_.kept_states;
+        x = ws_.kept_x;
+        ws_.w = ws_.kept_w;
+        ws_.scale = ws_.kept_scale;
+    }
+
+    /// A pinned row is at both bounds; report it at the one its w supports (w >= 0: at lo).
+    void orient_pinned_rows(std::vector<RowState>& states) const {
+        for (int i = 0; i < n_; ++i)
+            if (ws_.lo[i] == ws_.hi[i]) states[i] = ws_.w[i] >= 0 ? RowState::AtLo : RowState::AtHi;
+    }
+
+    const Problem& p_;
+    const Options& o_;
+    Workspace& ws_;
+    Result& r_;
+    const int n_;
+    int best_count_ = 0;
+    double best_violation_ = kInf;
+};
+
+}  // namespace
+
+bool is_small_island(int n, const Options& options) {
+    return options.method == Method::Bpp && options.friction == FrictionMode::Frozen && n >= 1 &&
+           n <= options.dense_island_rows;
+}
+
+bool takes_small_island(const Problem& problem, const Options& options) {
+    return is_small_island(problem.n, options) && problem.sparse == nullptr && problem.A != nullptr;
+}
+
+bool solve_small_island(const Problem& problem, const Options& options, std::vector<double>& x, Result& r) {
+    Workspace& ws = thread_workspace();
+    std::vector<RowState>& states = r.states;
+    states.assign(static_cast<std::size_t>(problem.n), RowState::Free);
+    if (!options.warm_start.empty()) states.assign(options.warm_start.begin(), options.warm_start.end());
+    x.assign(static_cast<std::size_t>(problem.n), 0.0);
+    if (!SmallIsland(problem, options, ws, r).solve(states, x)) return false;
+    r.status = Status::Converged;
+    r.tight = static_cast<int>(std::count_if(states.begin(), states.end(), [](RowState s) { return s != RowState::Free; }));
+    r.factor_error = std::numeric_limits<double>::quiet_NaN();
+    return true;
+}
+
+}  // namespace ode_bpp::pivoting

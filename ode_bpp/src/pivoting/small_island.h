@@ -1,0 +1,36 @@
+// The small-island path of Method::Bpp: block principal pivoting (paper Alg. 1, Júdice-Pires with
+// Murty's safeguard) on a dense A of at most Options::dense_island_rows rows, in the caller's
+// order, with Frozen friction.
+//
+// On an island of a few rows the general driver's set-up (ordering, factor strategy, permuted
+// copies, rescue bookkeeping) costs several times the pivoting itself (docs/benchmarks.md, small
+// islands). This path keeps only what such an island needs: A_FF gathered and factored densely
+// at every step (linalg/dense_cholesky.h), the classification of classify_row.h, the polish of a
+// converged index set, and no allocation once its per-thread buffers have grown. Whatever it cannot
+// finish (its budget runs out, a Cholesky pivot breaks down, Consistent friction) it leaves to
+// the general driver, which then solves the island from the same warm start.
+//
+// Index space: the caller's original row order throughout (no permutation).
+#pragma once
+
+#include <vector>
+
+#include "ode_bpp/solver.h"
+
+namespace ode_bpp::pivoting {
+
+/// True when an island of n rows belongs on this path: Method::Bpp, Frozen friction and
+/// 1 <= n <= options.dense_island_rows (callers that assemble A choose its form by this).
+bool is_small_island(int n, const Options& options);
+
+/// True when solve_small_island may take the problem: is_small_island and A in the dense form
+/// (Problem::A, no Problem::sparse).
+bool takes_small_island(const Problem& problem, const Options& options);
+
+/// Solves a validated problem that takes_small_island accepts.
+/// x: out, n entries. r: out; on success status Converged, the pivot counters (every step a
+/// refactorization), tight_per_step, states and tight; the residual fields are left to the
+/// caller. Returns false, leaving x and r unspecified, when the island needs the general driver.
+bool solve_small_island(const Problem& problem, const Options& options, std::vector<double>& x, Result& r);
+
+}  // namespace ode_bpp::pivoting

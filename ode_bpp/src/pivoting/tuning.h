@@ -1,0 +1,47 @@
+// The tuned constants of the BPP driver, in one place. Each states what it bounds; how it was
+// measured and what the alternatives gave is in docs/tuning.md. Deltas are relative to
+// max_i A_ii (an upper bound of max |A_ij| for SPD A).
+#pragma once
+
+namespace ode_bpp::pivoting::tuning {
+
+// ---- regularization (regularization.h) -------------------------------------------------------
+/// Breakdown ladder: first delta, growth per rung, last delta before A counts as not SPD.
+constexpr double kFirstShift = 1e-12;
+constexpr double kShiftGrowth = 100;
+constexpr double kLastShift = 1e-6;
+/// Up-front continuation (Options::continuation_stages): delta_k = start * span^(k / stages).
+constexpr double kContinuationStart = 1e-4;
+constexpr double kContinuationSpan = 1e-8;
+/// Rescue continuation: first delta; the most regularization tried when even that stalls.
+constexpr double kRescueStart = 1e-4;
+constexpr double kRescueCeiling = 0.1;
+/// delta_{k+1} = delta_k * ratio: the first ratio, its floor (a stage converging in one step
+/// squares it) and the ratio past which a stalled rescue gives up.
+constexpr double kRescueFirstRatio = 0.1;
+constexpr double kRescueMinRatio = 1e-6;
+constexpr double kRescueMaxRatio = 0.9;
+/// Below this delta the next stage is the target itself.
+constexpr double kRescueFloor = 1e-12;
+/// A rescue stage stalls when its least count of infeasible rows has not fallen for
+/// Options::murty_after + this many steps (Murty's phase gets that many single pivots), or at
+/// once when its block steps revisit an index set.
+constexpr int kMurtyPatience = 2;
+
+// ---- friction (friction_policy.h) --------------------------------------------------------------
+/// A linked solve (Consistent friction) may take this many times Options::max_pivots.
+constexpr int kLinkedBudgetFactor = 1;
+/// Lemke's method gets this many complementary pivots per LCP variable (plus 10).
+constexpr int kLemkePivotsPerVariable = 10;
+/// Covering vectors tried when a Lemke path ends on a ray.
+constexpr int kLemkeAttempts = 5;
+/// Largest friction LCP (variables) and island (rows) the dense Lemke stage takes on.
+constexpr int kLemkeMaxVariables = 1000;
+constexpr int kLemkeMaxRows = 1500;
+
+// ---- the pivoting loop (pivot_loop.h) ----------------------------------------------------------
+/// Polish of a converged index set: rounds, and pivot steps per round.
+constexpr int kPolishRounds = 2;
+constexpr int kPolishSteps = 6;
+
+}  // namespace ode_bpp::pivoting::tuning

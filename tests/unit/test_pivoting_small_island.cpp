@@ -1,0 +1,135 @@
+// The small-island path of Method::Bpp (pivoting/small_island.h): the same answers as the general
+// driver (Options::dense_island_rows = 0 sends every island there), the same certificate and
+// polish, and the general driver taking over whatever the path cannot finish.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ode_bpp/solver.h"
+#include "ode_bpp/validation.h"
+#include "pivoting/small_island.h"
+#include "problems/generators.h"
+#include "problems/named.h"
+#include "problems/vectors.h"
+
+namespace ode_bpp {
+namespace {
+
+using problems::inf_norm;
+using problems::max_abs_diff;
+
+Result run(const problems::OwnedProblem& p, std::vector<double>& x, Options o = {}) {
+    o.method = Method::Bpp;
+    x.assign(p.n, std::numeric_limits<double>::quiet_NaN());
+    return solve(p, o, x.data());
+}
+
+/// The general driver's answer to the same problem.
+Result run_general(const problems::OwnedProblem& p, std::vector<double>& x, Options o = {}) {
+    o.dense_island_rows = 0;
+    return run(p, x, o);
+}
+
+TEST(SmallIsland, TakesOnlyFrozenBppIslandsInTheDenseFormUpToTheThreshold) {
+    const auto p = problems::random_boxed_mlcp(12, 2, 2, 1e4, 7);
+    Options o;
+    EXPECT_TRUE(pivoting::takes_small_island(p.view(), o));
+    o.dense_island_rows = 11;
+    EXPECT_FALSE(pivoting::takes_small_island(p.view(), o));
+    o = {};
+    o.friction = FrictionMode::Consistent;
+    EXPECT_FALSE(pivoting::takes_small_island(p.view(), o));
+    o = {};
+    o.method = Method::BppChol;
+    EXPECT_FALSE(pivoting::takes_small_island(p.view(), o));
+}
+
+/// Frozen friction, boxes and unbounded rows on random islands of 3 to 32 rows: the answer of
+/// the general driver, certified to the same tolerance.
+TEST(SmallIsland, AgreesWithTheGeneralDriver) {
+    int compared = 0;
+    for (int n : {3, 8, 17, 32})
+        for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+            const int contacts = n / 6;
+            const auto p = problems::random_boxed_mlcp(n, n / 5, contacts, 1e6, 100 * n + seed);
+            std::vector<double> small, general;
+            const Result a = run(p, small);
+            const Result b = run_general(p, general);
+            ASSERT_EQ(b.status, Status::Converged) << n << " " << seed << ": " << b.message;
+            ASSERT_EQ(a.status, Status::Converged) << n << " " << seed << ": " << a.message;
+            EXPECT_LT(max_abs_diff(small, general), 1e-7 * (1 + inf_norm(general))) << n << " " << seed;
+            // Frozen bounds are not those of the answer's own normals: the residual (which takes
+            // them from the answer) is the general driver's, and the certificate without friction
+            if (contacts == 0) {
+                EXPECT_LT(a.scaled_natural_residual, 1e-8) << n << " " << seed;
+            }
+            EXPECT_NEAR(a.scaled_natural_residual, b.scaled_natural_residual, 1e-8) << n << " " << seed;
+            EXPECT_EQ(a.refactor_steps, a.pivots);  // a dense refactorization per step
+            EXPECT_EQ(a.downdate_steps, 0);
+            EXPECT_TRUE(a.ordering.empty());        // the caller's order: nothing for the hook to keep
+            EXPECT_EQ(static_cast<int>(a.tight_per_step.size()), a.pivots);
+            ++compared;
+        }
+    EXPECT_EQ(compared, 16);
+}
+
+/// Dantzig's frozen friction on the 3x3 example of docs/maths.md, and a warm start that only
+/// the polish turns away from opposed friction at its bounds (pivot_loop.cpp's story).
+TEST(SmallIsland, KeepsTheGeneralDriversFrictionSemanticsAndPolish) {
+    for (const auto& p : {problems::dantzig_friction_3x3(), problems::opposed_friction_pair()}) {
+        std::vector<double> small, general;
+        ASSERT_EQ(run(p, small).status, Status::Converged) << p.name;
+        ASSERT_EQ(run_general(p, general).status, Status::Converged) << p.name;
+        // opposed_friction_pair: CFM 1e-9 of the diagonal, so answers agree to about 1e-9 |x|
+        EXPECT_LT(max_abs_diff(small, general), 1e-8 * (1 + inf_norm(general))) << p.name;
+    }
+    const auto p = problems::opposed_friction_pair();
+    Options o;
+    o.warm_start = {RowState::Free, RowState::AtHi, RowState::Free, RowState::AtLo};
+    std::vector<double> x;
+    const Result r = run(p, x, o);
+    ASSERT_EQ(r.status, Status::Converged);
+    EXPECT_EQ(r.states[1], RowState::Free);
+    EXPECT_EQ(r.states[3], RowState::Free);
+    EXPECT_LT(std::abs(x[1]) + std::abs(x[3]), 1e-6 * 0.5 * x[0]);
+}
+
+/// A Cholesky breakdown (duplicated rows, no CFM) is the general driver's to regularize.
+TEST(SmallIsland, LeavesABreakdownToTheGeneralDriversRegularization) {
+    const auto p = problems::duplicated_rows();
+    std::vector<double> x;
+    const Result r = run(p, x);
+    EXPECT_EQ(r.status, Status::FallbackUsed) << r.message;
+    EXPECT_EQ(r.fallback, Fallback::Regularized);
+    EXPECT_TRUE(std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); }));
+}
+
+/// Out of budget, the path hands over, and the steps it took are counted in the answer's pivots.
+TEST(SmallIsland, HandsAnUnfinishedIslandToTheGeneralDriverAndCountsItsSteps) {
+    const auto p = problems::block_pivoting_cycle();
+    Options o;
+    o.max_pivots = 1;
+    std::vector<double> small, general;
+    const Result a = run(p, small, o);
+    const Result b = run_general(p, general, o);
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_EQ(a.pivots, b.pivots + 1);  // its one step, then the general driver's
+}
+
+TEST(SmallIsland, ReportsInvalidMatricesAsValidateDoes) {
+    auto p = problems::random_boxed_mlcp(6, 1, 1, 1e3, 3);
+    p.a(4, 2) = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> x;
+    const Result r = run(p, x);
+    EXPECT_EQ(r.status, Status::InvalidInput);
+    EXPECT_EQ(r.message, validate(p.view()).message);
+    EXPECT_EQ(x, std::vector<double>(6, 0.0));
+    p.a(4, 2) = 0;
+    p.a(3, 3) = -1;
+    EXPECT_EQ(run(p, x).message, validate(p.view()).message);
+}
+
+}  // namespace
+}  // namespace ode_bpp

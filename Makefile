@@ -6,6 +6,8 @@ CMAKE_DIR  := $(BUILD)/cmake
 ASAN_DIR   := $(BUILD)/asan
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
+# no "make[N]: Entering directory" lines, here or in the builds cmake runs (MAKEFLAGS is exported)
+MAKEFLAGS  += --no-print-directory
 
 .PHONY: all deps ode configure build test test-sanitize demo bench bench-report convergence stability fuzz ode-demos install clean distclean
 
@@ -17,14 +19,19 @@ deps:
 ode: deps
 	@bash scripts/build-ode.sh $(BUILD) patches
 
+# CMake's own lines go to a log; shown only when configuring fails
 $(CMAKE_DIR)/CMakeCache.txt: | ode
-	cmake -S . -B $(CMAKE_DIR) -DCMAKE_BUILD_TYPE=Release -DODE_ROOT=$(abspath $(BUILD))/ode-install $(CMAKE_ARGS)
+	@echo "[configure] cmake (Release); log: $(BUILD)/configure.log"
+	@cmake -S . -B $(CMAKE_DIR) -DCMAKE_BUILD_TYPE=Release -DODE_ROOT=$(abspath $(BUILD))/ode-install $(CMAKE_ARGS) \
+	  >$(BUILD)/configure.log 2>&1 || { cat $(BUILD)/configure.log; rm -f $(CMAKE_DIR)/CMakeCache.txt; exit 1; }
 
 configure: ode $(CMAKE_DIR)/CMakeCache.txt
 
+# Compiler messages in full, otherwise a progress line per 10 % (scripts/quiet-build.awk); the
+# whole output in $(BUILD)/build.log
 build: configure
-	@echo "[build] compiling ode-bpp with $(JOBS) jobs"
-	@cmake --build $(CMAKE_DIR) -j$(JOBS)
+	@echo "[build] compiling ode-bpp with $(JOBS) jobs; log: $(BUILD)/build.log"
+	@set -o pipefail; cmake --build $(CMAKE_DIR) -j$(JOBS) 2>&1 | tee $(BUILD)/build.log | awk -f scripts/quiet-build.awk
 
 # The whole suite through ctest; non-zero exit on any failure.
 test: build
@@ -55,8 +62,9 @@ fuzz: ode
 # The headline comparison: the scenes stepped with ODE's Dantzig and with ode-bpp.
 demo: build
 	@mkdir -p results
-	@echo "[demo] the paper's six scenes, 20 s each, stepped with ODE's dantzig and with bpp side by side"
+	@echo "[demo] the paper's six scenes, 20 s each, stepped with ODE's dantzig and with bpp side by side (under a minute)"
 	@echo "[demo] per island and step: rows, tight fraction, solve time, pivots, residual -> results/demo.csv"
+	@echo "[demo] the table and its legend -> results/demo.txt"
 	@set -o pipefail; $(CMAKE_DIR)/demos/ode-bpp-demo paper --compare dantzig,bpp --csv results/demo.csv | tee results/demo.txt
 
 .PHONY: bench-kernels deps-peers

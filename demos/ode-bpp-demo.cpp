@@ -7,15 +7,20 @@
 //   ode-bpp-demo SCENE --compare dantzig,bpp [...]
 //   ode-bpp-demo --list
 // SCENE "paper" runs the paper's six scenes one after the other.
-// Exit status: 0 when every run met its scene's success criterion, 1 when one did not, 2 for
-// bad arguments (unknown scene or solver included), 3 when --capture could not write a file.
+// Exit status: 0 when every run met its scene's success criterion (or ran too short to judge it),
+// 1 when one did not, 2 for bad arguments (unknown scene or solver included), 3 when --capture
+// could not create its directory or write a file.
 #include <ode/mlcp.h>
 #include <ode/ode.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdarg>
+#include <cstdint>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -74,28 +79,40 @@ std::vector<std::string> split_commas(const std::string& s) {
     return out;
 }
 
+std::string valid_scenes() {
+    std::string names = "paper";
+    for (const std::string& s : scene_names()) names += ", " + s;
+    return names;
+}
+
 void print_usage(FILE* out) {
     std::fprintf(out,
                  "usage: ode-bpp-demo SCENE [--solver NAME] [--seconds S] [--cfm X | --compliance C]\n"
                  "                    [--csv FILE] [--capture DIR [--capture-every K]] [--cond-every N]\n"
                  "                    [--friction MODE] [--quiet]\n"
                  "       ode-bpp-demo SCENE --compare NAME,NAME[,...] [same options]\n"
-                 "       ode-bpp-demo --list\n"
+                 "       ode-bpp-demo --list | --help\n"
+                 "Steps SCENE with an MLCP solver inside dWorldStep and reports solve times, pivots,\n"
+                 "residuals and the scene's success criterion (judged only on runs of the scene's full length).\n"
                  "  --solver      MLCP solver inside dWorldStep (default bpp)\n"
+                 "  --compare     the same runs with each solver, as one table; speed-up against the first\n"
+                 "  --seconds     simulated time (default: the scene's own, 20 s for the paper's scenes)\n"
                  "  --cfm         ODE CFM of joints and contacts (default 1e-10, ODE's)\n"
                  "  --compliance  the paper's compliance c; sets CFM = c / h (paper: 1e-6 .. 1e-10)\n"
                  "  --csv         one row per island per step\n"
-                 "  --capture     writes every island's MLCP (every K-th step) into DIR\n"
+                 "  --capture     writes every island's MLCP (every K-th step) into DIR (created)\n"
                  "  --cond-every  estimate cond(A) of the largest island every N steps (default 30; 0: never)\n"
                  "  --friction    frozen|consistent: friction mode of ode-bpp's solvers (default frozen)\n"
-                 "scenes: paper (the six below, in turn)");
-    for (const std::string& s : scene_names()) std::fprintf(out, " %s", s.c_str());
-    std::fprintf(out, "\nsolvers: %s\n", dListMLCPSolvers());
+                 "  --quiet       no progress lines on stderr\n"
+                 "scenes: %s (paper: the paper's six, in turn)\n"
+                 "solvers: %s\n"
+                 "exit status: 0 every criterion met (or not judged: run shorter than the scene's), 1 a criterion\n"
+                 "             missed, 2 bad arguments, 3 --capture could not create DIR or write a file\n",
+                 valid_scenes().c_str(), dListMLCPSolvers());
 }
 
 [[noreturn]] void usage_error(const std::string& message) {
-    std::fprintf(stderr, "ode-bpp-demo: %s\n", message.c_str());
-    print_usage(stderr);
+    std::fprintf(stderr, "ode-bpp-demo: %s (ode-bpp-demo --help for the usage)\n", message.c_str());
     std::exit(kExitUsage);
 }
 
@@ -114,7 +131,7 @@ std::vector<std::string> expand_scene(const std::string& name) {
         for (const auto& [scene, factory] : paper_scenes()) six.push_back(scene);
         return six;
     }
-    if (!make_scene(name)) usage_error("unknown scene '" + name + "'");
+    if (!make_scene(name)) usage_error("unknown scene '" + name + "'; valid: " + valid_scenes());
     return {name};
 }
 
@@ -158,7 +175,7 @@ Args parse_args(int argc, char** argv) {
     if (a.capture_every < 1 || a.cond_every < 0) usage_error("--capture-every >= 1, --cond-every >= 0");
     if (a.compare && a.solvers.size() < 2) usage_error("--compare needs at least two solvers");
     for (const std::string& s : a.solvers) {
-        if (!is_solver_registered(s)) usage_error("unknown solver '" + s + "'");
+        if (!is_solver_registered(s)) usage_error("unknown solver '" + s + "'; valid: " + dListMLCPSolvers());
     }
     return a;
 }
@@ -183,6 +200,8 @@ struct Recorder {
     long step = 0;
     double cfm = 0, erp = 0;
     std::string capture_error;
+    long capture_files = 0;              ///< files written
+    std::uintmax_t capture_bytes = 0;    ///< their sizes, summed
 };
 
 double island_mass_ratio(const dMLCP& p) {
@@ -226,9 +245,15 @@ void capture_island(Recorder& rec, const dMLCP& p, size_t island) {
     meta.set("frame", std::to_string(rec.step));
     meta.set("island", std::to_string(island));
     std::string error;
-    if (!ode_bpp::write_mlcp_from_ode((fs::path(rec.capture_dir) / file).string(), p, meta, &error)) {
+    const fs::path path = fs::path(rec.capture_dir) / file;
+    if (!ode_bpp::write_mlcp_from_ode(path.string(), p, meta, &error)) {
         if (rec.capture_error.empty()) rec.capture_error = error;
+        return;
     }
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(path, ec);
+    rec.capture_files += 1;
+    rec.capture_bytes += ec ? 0 : size;
 }
 
 void observe(const dMLCP* p, const dMLCPIslandStats* stats, void* data) {
@@ -329,9 +354,17 @@ struct RunResult {
     double max_joint_error = 0;
     dMLCPStepStats totals{};
     SuccessReport success;
+    /// false when the run was shorter than the scene's own length and its world stayed sound: the
+    /// criterion says nothing about a partial run, so it was not evaluated
+    bool judged = true;
+    double criterion_seconds = 0;        ///< the scene's own length, after which it is judged
+    double simulated_seconds = 0;        ///< simulated time the run reached
+    long lcp_messages = 0;               ///< ODE's Dantzig "LCP internal error" messages
     TableTwo paper;
     double wall_seconds = 0;
     std::string capture_error;
+    long capture_files = 0;
+    std::uintmax_t capture_bytes = 0;
 };
 
 double percentile(std::vector<double> v, double q) {
@@ -425,6 +458,27 @@ private:
     Clock::time_point start_ = Clock::now(), last_ = Clock::now();
 };
 
+// ODE's messages as ODE prints them, and once per process a line that explains Dantzig's
+// "LCP internal error, s <= 0": a step of length s <= 0 on a nearly singular system, where ODE's
+// Dantzig stops, keeps its answer with the remaining rows' impulses at zero, and the world step
+// goes on (docs/maths.md). They are counted per run.
+std::atomic<long> g_lcp_messages{0};
+
+void on_ode_message(int number, const char* format, va_list ap) {
+    char text[512];
+    std::vsnprintf(text, sizeof text, format, ap);
+    std::fprintf(stderr, "\nODE Message %d: %s\n", number, text);
+    if (std::strstr(text, "LCP internal error") == nullptr) return;
+    static bool explained = false;
+    if (!explained) {
+        std::fprintf(stderr, "ode-bpp-demo: this comes from ODE's Dantzig (the dantzig solver, or a fallback to it): it "
+                             "could not take a pivot step (s <= 0), kept its answer with the remaining impulses at zero, "
+                             "and the step went on; counted per run in the results\n");
+        explained = true;
+    }
+    g_lcp_messages.fetch_add(1);
+}
+
 // One step: the scene's control, collision and dWorldStep, and the step's measurements.
 // Returns false when the run must stop (the world blew up, or a capture file was lost).
 bool advance(Scene& scene, SceneWorld& w, Recorder& rec, const RunOptions& opt, RunResult& run) {
@@ -467,8 +521,15 @@ RunResult run_scene(const std::string& name, const RunOptions& opt) {
     dWorldSetMLCPObserver(w.world(), nullptr, nullptr);
     dWorldGetMLCPStats(w.world(), nullptr, &run.totals);
     run.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    run.success = run.finite ? scene->success(w) : SuccessReport{false, "the world blew up (non-finite or failed step)"};
+    run.criterion_seconds = scene->default_seconds();
+    run.simulated_seconds = w.time();
+    run.judged = !run.finite || w.time() >= run.criterion_seconds - 0.5 * opt.params.step;
+    if (!run.finite) run.success = {false, "the world blew up (non-finite or failed step)"};
+    else if (run.judged) run.success = scene->success(w);
+    run.lcp_messages = g_lcp_messages.exchange(0);
     run.capture_error = rec.capture_error;
+    run.capture_files = rec.capture_files;
+    run.capture_bytes = rec.capture_bytes;
     return run;
 }
 
@@ -489,6 +550,17 @@ std::string cond_text(double c) {
     return buf;
 }
 
+std::string success_text(const RunResult& r) {
+    if (!r.judged) return "n/a";
+    return r.success.ok ? "yes" : "NO";
+}
+
+std::string table_two_text(double mass_ratio, int rows, double cond, const TableTwo& paper) {
+    return "measured mass ratio " + ratio_text(mass_ratio) + ", rows " + std::to_string(rows) + ", cond " +
+           cond_text(cond) + " | paper " + ratio_text(paper.mass_ratio) + ", " + std::to_string(paper.rows) + ", " +
+           cond_text(paper.cond);
+}
+
 void print_summary(const RunResult& r) {
     std::printf("%s [%s]: %ld steps (%.1f s wall), islands/step <= %d, max rows %d, "
                 "solve median %.3f ms max %.3f ms, step median %.3f ms, pivots %ld, fallbacks %ld, "
@@ -498,24 +570,101 @@ void print_summary(const RunResult& r) {
                 static_cast<long>(r.totals.pivots), static_cast<long>(r.totals.fallbacks),
                 static_cast<long>(r.totals.failures), 100 * r.max_tight_fraction,
                 r.worst_relative_residual, r.worst_scaled_residual, r.max_joint_error);
-    std::printf("  success: %s (%s)\n", r.success.ok ? "yes" : "NO", r.success.detail.c_str());
-    std::printf("  Table 2: measured mass ratio %s, rows %d, cond %s | paper %s, %d, %s\n",
-                ratio_text(r.max_mass_ratio).c_str(), r.max_rows, cond_text(r.max_cond).c_str(),
-                ratio_text(r.paper.mass_ratio).c_str(), r.paper.rows, cond_text(r.paper.cond).c_str());
+    if (r.judged)
+        std::printf("  success: %s (%s)\n", r.success.ok ? "yes" : "NO", r.success.detail.c_str());
+    else
+        std::printf("  success: not evaluated (the criterion is judged after the scene's %.0f s; this run: %.2f s)\n",
+                    r.criterion_seconds, r.simulated_seconds);
+    if (r.lcp_messages > 0) std::printf("  ODE's Dantzig printed 'LCP internal error' %ld times\n", r.lcp_messages);
+    std::printf("  Table 2: %s\n",
+                table_two_text(r.max_mass_ratio, r.max_rows, r.max_cond, r.paper).c_str());
+}
+
+std::string speedup_text(const RunResult& baseline, const RunResult& r) {
+    const double mine = percentile(r.solve_ms, 0.5);
+    if (!(mine > 0)) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2fx", percentile(baseline.solve_ms, 0.5) / mine);
+    return buf;
+}
+
+/// The scene's Table 2 line, measured over its runs (every solver sees the same scene).
+void print_table_two(const std::vector<RunResult>& runs, size_t first, size_t end) {
+    double mass_ratio = 1, cond = 0;
+    int rows = 0;
+    for (size_t k = first; k < end; ++k) {
+        mass_ratio = std::max(mass_ratio, runs[k].max_mass_ratio);
+        cond = std::max(cond, runs[k].max_cond);
+        rows = std::max(rows, runs[k].max_rows);
+    }
+    std::printf("  Table 2 (%s): %s\n", runs[first].scene.c_str(),
+                table_two_text(mass_ratio, rows, cond, runs[first].paper).c_str());
+}
+
+void print_legend(const std::string& baseline) {
+    std::printf(
+        "solve ms/step: wall time in the solver per world step (all islands), median and slowest; lower is better.\n"
+        "speed-up: %s's median / this solver's, same scene and run. pivots: ode-bpp's pivot steps (Dantzig counts none).\n"
+        "fallbacks: islands answered through a fallback (regularization, ODE's Dantzig); failures: of those, islands the\n"
+        "  world step handed to ODE's Dantzig. success: the scene's own criterion (n/a: a run shorter than the scene).\n"
+        "worst resid: largest natural residual / max(1, |b|), friction bounds from the answer's own normals. With Frozen\n"
+        "  friction (Dantzig's semantics, the default) the bounds come from earlier normals, so 1e1-1e3 is expected there\n"
+        "  for every solver (--friction consistent holds each friction impulse to its own normal). Table 2: measured | paper.\n",
+        baseline.c_str());
 }
 
 // fallbacks: every fallback (ODE counts a failed solve answered by its Dantzig as one too);
-// failures: of those, the solves the world step handed to ODE's Dantzig.
-void print_comparison(const std::vector<RunResult>& runs) {
-    std::printf("%-10s %-10s %10s %10s %9s %10s %9s %9s %8s %12s\n", "scene", "solver", "median ms",
-                "max ms", "max rows", "pivots", "fallbacks", "failures", "success", "worst resid");
-    for (const RunResult& r : runs) {
-        std::printf("%-10s %-10s %10.3f %10.3f %9d %10ld %9ld %9ld %8s %12.1e\n", r.scene.c_str(),
-                    r.solver.c_str(), percentile(r.solve_ms, 0.5), percentile(r.solve_ms, 1.0),
-                    r.max_rows, static_cast<long>(r.totals.pivots), static_cast<long>(r.totals.fallbacks),
-                    static_cast<long>(r.totals.failures),
-                    r.success.ok ? "yes" : "NO", r.worst_relative_residual);
+// failures: of those, the solves the world step handed to ODE's Dantzig. Runs come scene by
+// scene, the solvers of one scene in the order given; the first is the speed-up's baseline.
+void print_comparison(const std::vector<RunResult>& runs, size_t solvers) {
+    std::printf("%-10s %-10s %21s %9s %9s %10s %9s %9s %8s %12s\n", "scene", "solver", "solve ms/step", "speed-up",
+                "max rows", "pivots", "fallbacks", "failures", "success", "worst resid");
+    std::printf("%-10s %-10s %10s %10s\n", "", "", "median", "max");
+    long lcp_messages = 0;
+    for (size_t first = 0; first < runs.size(); first += solvers) {
+        for (size_t k = first; k < first + solvers; ++k) {
+            const RunResult& r = runs[k];
+            std::printf("%-10s %-10s %10.3f %10.3f %9s %9d %10ld %9ld %9ld %8s %12.1e\n", r.scene.c_str(),
+                        r.solver.c_str(), percentile(r.solve_ms, 0.5), percentile(r.solve_ms, 1.0),
+                        speedup_text(runs[first], r).c_str(), r.max_rows, static_cast<long>(r.totals.pivots),
+                        static_cast<long>(r.totals.fallbacks), static_cast<long>(r.totals.failures),
+                        success_text(r).c_str(), r.worst_relative_residual);
+            lcp_messages += r.lcp_messages;
+        }
+        print_table_two(runs, first, first + solvers);
     }
+    std::printf("\n");
+    print_legend(runs.front().solver);
+    if (lcp_messages == 0) return;
+    std::printf("ODE's Dantzig printed 'LCP internal error' (see above) in:");
+    for (const RunResult& r : runs)
+        if (r.lcp_messages > 0) std::printf(" %s/%s %ldx", r.scene.c_str(), r.solver.c_str(), r.lcp_messages);
+    std::printf("\n");
+}
+
+/// Creates DIR (and its parents) for --capture; false with the reason if it is not a directory
+/// afterwards.
+bool make_capture_directory(const std::string& dir, std::string* error) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+        *error = "cannot create the directory: " + ec.message();
+        return false;
+    }
+    if (!std::filesystem::is_directory(dir, ec)) {
+        *error = "exists and is not a directory";
+        return false;
+    }
+    return true;
+}
+
+/// What --capture wrote, over all runs so far.
+void report_capture(const std::vector<RunResult>& runs, const std::string& dir, FILE* out) {
+    long files = 0;
+    std::uintmax_t bytes = 0;
+    for (const RunResult& r : runs) files += r.capture_files, bytes += r.capture_bytes;
+    std::fprintf(out, "capture: %ld files, %ju bytes (%.1f MB) in %s\n", files, bytes, static_cast<double>(bytes) / 1e6,
+                 dir.c_str());
 }
 
 void print_list() {
@@ -529,6 +678,7 @@ void print_list() {
 
 int main(int argc, char** argv) {
     dInitODE2(0);
+    dSetMessageHandler(&on_ode_message);
     const Args args = parse_args(argc, argv);
     if (args.list) {
         print_list();
@@ -541,7 +691,14 @@ int main(int argc, char** argv) {
         if (!csv) usage_error("cannot write " + args.csv);
         write_csv_header(csv);
     }
-    if (!args.capture_dir.empty()) std::filesystem::create_directories(args.capture_dir);
+    if (!args.capture_dir.empty()) {
+        std::string error;
+        if (!make_capture_directory(args.capture_dir, &error)) {
+            std::fprintf(stderr, "ode-bpp-demo: --capture %s: %s\n", args.capture_dir.c_str(), error.c_str());
+            dCloseODE();
+            return kExitCaptureFailed;
+        }
+    }
     bool all_ok = true;
     std::vector<RunResult> runs;
     for (const std::string& scene : args.scenes) {
@@ -562,14 +719,16 @@ int main(int argc, char** argv) {
             if (!runs.back().capture_error.empty()) {
                 std::fprintf(stderr, "ode-bpp-demo: capture into %s failed: %s\n", args.capture_dir.c_str(),
                              runs.back().capture_error.c_str());
+                report_capture(runs, args.capture_dir, stderr);
                 dCloseODE();
                 return kExitCaptureFailed;
             }
             if (!args.compare) print_summary(runs.back());
-            all_ok = all_ok && runs.back().success.ok;
+            all_ok = all_ok && (!runs.back().judged || runs.back().success.ok);
         }
     }
-    if (args.compare) print_comparison(runs);
+    if (args.compare) print_comparison(runs, args.solvers.size());
+    if (!args.capture_dir.empty()) report_capture(runs, args.capture_dir, stdout);
     dCloseODE();
     return all_ok ? 0 : kExitCriterionFailed;
 }

@@ -49,8 +49,8 @@ if ! ./configure --prefix="$PREFIX" --enable-double-precision --with-libccd=syst
       LDFLAGS="$(flags LDFLAGS)" >"$log" 2>&1; then
   tail -n 30 "$log" >&2; echo "[ode] error: configure failed (see $log)" >&2; exit 1
 fi
-echo "[ode] compiling with $(nproc) jobs (about a minute)"
-if ! make -j"$(nproc)" >>"$log" 2>&1; then
+echo "[ode] compiling with $(nproc) jobs (a few minutes on 2 cores: the library and its demos)"
+if ! "$HERE/run-with-progress.sh" ode "$log" 20 make -j"$(nproc)"; then
   grep -m 20 -E "error|Error" "$log" >&2 || tail -n 30 "$log" >&2
   echo "[ode] error: build failed (see $log)" >&2; exit 1
 fi

@@ -5,7 +5,8 @@
 // Geoms are drawn generically by class from the scene's space, so a scene needs no drawing code.
 // Keys: n / p next / previous scene, s next solver (rebuilds), r restart, space pause,
 // c camera follows the bodies (on) or stays where the mouse puts it (off).
-// The window title shows the scene, the solver, the simulated time and the last solve time.
+// The window shows the scene, the solver, the simulated time and the solve time per step in its
+// top left corner (so screenshots describe themselves) and in its title.
 #include <GL/gl.h>
 #include <GL/glx.h>
 #include <X11/Xlib.h>
@@ -24,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "overlay.h"
 #include "scenes/scene.h"
 
 namespace {
@@ -39,10 +41,19 @@ constexpr double kCameraFraming = 1.1;       // distance per metre of the bodies
 constexpr double kCameraSmoothing = 0.1;     // share of the way to the new target per frame
 constexpr float kGeomlessBodyMarker = 0.05f; // radius of the sphere drawn for a body without geoms [m]
 
+constexpr int kExitFailure = 1;  ///< the window or the screenshot failed
+constexpr int kExitUsage = 2;    ///< bad arguments, unknown scene or solver
+
 const char* const kUsage =
-    "usage: ode-bpp-viewer [SCENE] [--solver NAME] [--frames N] [--screenshot FILE.ppm|FILE.png] [--list]\n"
+    "usage: ode-bpp-viewer [SCENE] [--solver NAME] [--frames N] [--screenshot FILE.ppm|FILE.png]\n"
+    "       ode-bpp-viewer --list | --help\n"
+    "Draws SCENE (default: the first) stepped with an MLCP solver inside dWorldStep (default bpp).\n"
+    "  --frames N      quit after N frames (0: run until the window is closed)\n"
+    "  --screenshot F  write the last frame to F (.ppm or .png); needs --frames\n"
+    "  --list          the scenes and solvers\n"
     "       drawstuff's own flags -notex, -noshadow and -pause are passed on.\n"
-    "keys:  n/p next/previous scene, s next solver, r restart, space pause, c camera follow on/off\n";
+    "keys:  n/p next/previous scene, s next solver, r restart, space pause, c camera follow on/off\n"
+    "exit status: 0 done, 1 the screenshot could not be written, 2 bad arguments\n";
 
 struct Options {
     std::string scene;                       ///< empty: the first registered scene
@@ -50,8 +61,16 @@ struct Options {
     long frames = 0;                         ///< quit after this many frames; 0: run until closed
     std::string screenshot;                  ///< written after the last frame; empty: none
     bool list = false;
+    bool help = false;
     std::vector<std::string> drawstuff_flags;
 };
+
+long frame_count(const std::string& text) {
+    char* end = nullptr;
+    const long n = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || n < 0) throw std::invalid_argument("--frames needs a count >= 0, got '" + text + "'");
+    return n;
+}
 
 /// Parses the command line; throws std::invalid_argument on a bad one.
 Options parse_options(int argc, char** argv) {
@@ -62,8 +81,9 @@ Options parse_options(int argc, char** argv) {
             if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
             return argv[++i];
         };
-        if (arg == "--solver") options.solver = value();
-        else if (arg == "--frames") options.frames = std::stol(value());
+        if (arg == "--help" || arg == "-h") options.help = true;
+        else if (arg == "--solver") options.solver = value();
+        else if (arg == "--frames") options.frames = frame_count(value());
         else if (arg == "--screenshot") options.screenshot = value();
         else if (arg == "--list") options.list = true;
         else if (arg == "-notex" || arg == "-noshadow" || arg == "-noshadows" || arg == "-pause")
@@ -71,7 +91,6 @@ Options parse_options(int argc, char** argv) {
         else if (!arg.empty() && arg[0] != '-' && options.scene.empty()) options.scene = arg;
         else throw std::invalid_argument("unexpected argument '" + arg + "'");
     }
-    if (options.frames < 0) throw std::invalid_argument("--frames must be >= 0");
     if (!options.screenshot.empty() && options.frames == 0)
         throw std::invalid_argument("--screenshot needs --frames N (the shot is taken after the last frame)");
     return options;
@@ -82,7 +101,7 @@ size_t index_of(const std::vector<std::string>& names, const std::string& name, 
     if (it != names.end()) return size_t(it - names.begin());
     std::string known;
     for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
-    throw std::invalid_argument(std::string("unknown ") + what + " '" + name + "' (known: " + known + ")");
+    throw std::invalid_argument(std::string("unknown ") + what + " '" + name + "'; valid: " + known);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -229,6 +248,7 @@ public:
 
     void start() {
         std::printf("%s", kUsage);
+        if (!overlay_.load()) std::printf("no X font for the text in the window; the title still says it all\n");
         rebuild();
     }
 
@@ -237,6 +257,7 @@ public:
         if (!paused_ && !drawstuff_paused) advance();
         if (follow_) follow_camera(false);
         draw();
+        overlay_.draw(overlay_lines());
         ++frames_;
         update_title();
         if (options_.frames > 0 && frames_ >= options_.frames) finish_run();
@@ -358,6 +379,26 @@ private:
         return line;
     }
 
+    /// What the window shows in its corner: scene, solver, simulated time, solve time per step.
+    std::vector<std::string> overlay_lines() const {
+        constexpr size_t kMaxDescription = 60;
+        dMLCPStepStats last{}, total{};
+        const bool solved = dWorldGetMLCPStats(world_->world(), &last, &total) != 0;
+        std::string description = scene_->description();
+        if (description.size() > kMaxDescription) description = description.substr(0, kMaxDescription - 3) + "...";
+        char solver[128], time[64], solve[128];
+        std::snprintf(solver, sizeof solver, "solver %s%s%s", world_->params().solver.c_str(),
+                      paused_ ? "   (paused)" : "", step_failed_ ? "   STEP FAILED" : "");
+        std::snprintf(time, sizeof time, "t = %.2f s simulated", world_->time());
+        if (solved)
+            std::snprintf(solve, sizeof solve, "solve %.3f ms this step, %.3f ms mean per step, %d rows",
+                          1e3 * last.seconds, total.steps > 0 ? 1e3 * total.seconds / double(total.steps) : 0.0,
+                          static_cast<int>(last.rows));
+        else
+            std::snprintf(solve, sizeof solve, "solve: no constraints yet");
+        return {scene_->name() + ": " + description, solver, time, solve};
+    }
+
     /// The title goes straight to the X window drawstuff made current for its GL context.
     void update_title() {
         const std::string title = "ode-bpp-viewer: " + status_line();
@@ -392,6 +433,7 @@ private:
     double camera_target_[3] = {0, 0, 0};
     double camera_distance_ = kCameraMinDistance;
     std::string title_;
+    ode_bpp::viewer::TextOverlay overlay_;
 };
 
 // drawstuff takes plain function pointers; they reach the one viewer through this pointer.
@@ -413,6 +455,10 @@ void print_list() {
 int main(int argc, char** argv) {
     try {
         const Options options = parse_options(argc, argv);
+        if (options.help) {
+            std::printf("%s", kUsage);
+            return EXIT_SUCCESS;
+        }
         if (options.list) {
             print_list();
             return EXIT_SUCCESS;
@@ -431,9 +477,12 @@ int main(int argc, char** argv) {
         for (std::string& flag : flags) ds_argv.push_back(flag.data());
         dsSimulationLoop(int(ds_argv.size()), ds_argv.data(), kWindowWidth, kWindowHeight, &fn);
         g_viewer = nullptr;
-        return viewer.screenshot_failed() ? EXIT_FAILURE : EXIT_SUCCESS;
+        return viewer.screenshot_failed() ? kExitFailure : EXIT_SUCCESS;
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "ode-bpp-viewer: %s (ode-bpp-viewer --help for the usage)\n", e.what());
+        return kExitUsage;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "ode-bpp-viewer: %s\n%s", e.what(), kUsage);
-        return EXIT_FAILURE;
+        std::fprintf(stderr, "ode-bpp-viewer: %s\n", e.what());
+        return kExitFailure;
     }
 }

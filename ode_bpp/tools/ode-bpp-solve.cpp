@@ -68,7 +68,9 @@ std::string usage() {
            "  --repeat R            solve R times, report the median time (default: 1)\n"
            "  --factor-error        compute the factor error of the final index set\n"
            "  --csv OUT.csv         write the CSV there instead of stdout\n"
-           "  --help                show this text\n";
+           "  --help                show this text\n"
+           "Exit status: 0 every file read, 1 a file could not be read or the CSV not written,\n"
+           "2 bad arguments. A solver's failure is data (the status column), not an error.\n";
     return out.str();
 }
 
@@ -81,28 +83,29 @@ std::optional<int> positive_int(const std::string& text) {
     return static_cast<int>(v);
 }
 
-std::optional<std::vector<ode_bpp::Method>> parse_methods(const std::string& list) {
+/// The methods of a comma-separated list; nullopt with the reason for an unknown name or none.
+std::optional<std::vector<ode_bpp::Method>> parse_methods(const std::string& list, std::string* error) {
     std::vector<ode_bpp::Method> methods;
     std::stringstream in(list);
     std::string name;
     while (std::getline(in, name, ',')) {
         const auto method = ode_bpp::method_from_string(name);
-        if (!method) return std::nullopt;
+        if (!method) return refuse(error, "unknown method '" + name + "'; valid: " + joined_method_names());
         methods.push_back(*method);
     }
-    if (methods.empty()) return std::nullopt;
+    if (methods.empty()) return refuse(error, "--methods needs at least one of: " + joined_method_names());
     return methods;
 }
 
 // Applies one "--name value" option; false with a reason on error.
 bool apply_option(Cli& cli, const std::string& name, const std::string& value, std::string* error) {
     if (name == "--methods") {
-        const auto methods = parse_methods(value);
-        if (!methods) return reject(error, "unknown method in \"" + value + "\"");
+        const auto methods = parse_methods(value, error);
+        if (!methods) return false;
         cli.methods = *methods;
     } else if (name == "--friction") {
         const auto friction = ode_bpp::friction_from_string(value);
-        if (!friction) return reject(error, "unknown friction mode \"" + value + "\"");
+        if (!friction) return reject(error, "unknown friction mode \"" + value + "\"; valid: frozen, consistent");
         cli.friction = *friction;
     } else if (name == "--max-pivots" || name == "--pgs-iterations" || name == "--repeat") {
         const auto v = positive_int(value);

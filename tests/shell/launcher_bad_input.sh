@@ -7,7 +7,8 @@
 #   ODE linked statically                             -> refuses (125);
 #   a setuid program                                  -> refuses (125);
 #   an unknown --solver                               -> refuses (125) listing the valid names;
-#   a missing program                                 -> 127.
+#   a missing program                                 -> 127;
+#   a script reads the caller's stdin (a closed one is no error).
 set -euo pipefail
 source "$(dirname "$0")/../launcher/common.bash"
 
@@ -29,6 +30,14 @@ grep -q "does not use ODE" "$WORK/true_prog.err" || { show true_prog; fail "/bin
 capture false_prog "$RUN" false
 (( STATUS == 1 )) || { show false_prog; fail "false under the launcher: status $STATUS, expected its own 1"; }
 note "non-ODE programs run unchanged with their own status"
+
+# --- a script runs as the launcher's child: it reads the caller's stdin; a closed stdin is no error
+capture stdin_script bash -c "echo hello | '$RUN' bash -c 'read -r line; echo \"got \$line\"'"
+[[ "$(cat "$WORK/stdin_script.out")" == "got hello" ]] || { show stdin_script; fail "a script under the launcher did not read the caller's stdin"; }
+capture closed_stdin bash -c "'$RUN' /bin/sh -c 'echo ran' <&-"
+(( STATUS == 0 )) && [[ "$(cat "$WORK/closed_stdin.out")" == ran ]] && ! grep -q 'Bad file descriptor' "$WORK/closed_stdin.err" \
+    || { show closed_stdin; fail "a script under the launcher with stdin closed"; }
+note "scripts get the caller's stdin"
 
 capture missing "$RUN" "$WORK/no-such-program"
 (( STATUS == 127 )) || { show missing; fail "missing program: status $STATUS, expected 127"; }

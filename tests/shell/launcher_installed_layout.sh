@@ -1,23 +1,19 @@
 #!/usr/bin/env bash
 # The installed ode-bpp-run finds libode_bpp.so and the patched libode.so.8 relative to itself
 # (PREFIX/bin -> PREFIX/<libdir>), also when started through a symlink, and never the build tree:
-# a prefix laid out like `cmake --install` (the install copy of the script in bin/, the two
-# libraries in the relative lib dir baked into it) runs a Debian-built program on bpp.
+# a prefix made by `cmake --install` (the launcher in bin/; the patched libode, libode_bpp.so,
+# the preload libode_bpp_run.so and the helper ode-bpp/ode-bpp-run-solvers in the relative lib
+# dir baked into it) runs a Debian-built program on bpp.
 set -euo pipefail
 source "$(dirname "$0")/../launcher/common.bash"
-: "${ODE_ROOT:?set by ctest (tests/CMakeLists.txt)}"
-
-installed_script=$ODE_BPP_BINARY_DIR/ode_bpp/ode-bpp-run.install
-[[ -f "$installed_script" ]] || fail "no install copy of the launcher at $installed_script"
-rel=$(sed -n 's/^readonly LIB_DIRS_SPEC="\(.*\)"$/\1/p' "$installed_script")
-[[ -n "$rel" && "$rel" != /* ]] || fail "the install copy does not look in a relative lib dir (got '$rel')"
 
 prefix=$WORK/prefix
-mkdir -p "$prefix/bin" "$prefix/bin/$rel"
-cp "$installed_script" "$prefix/bin/ode-bpp-run"
-chmod +x "$prefix/bin/ode-bpp-run"
-cp -a "$ODE_ROOT"/lib/libode.so.8* "$prefix/bin/$rel/"
-cp -a "$ODE_BPP_BINARY_DIR"/ode_bpp/libode_bpp.so* "$prefix/bin/$rel/"
+cmake --install "$ODE_BPP_BINARY_DIR" --prefix "$prefix" >/dev/null || fail "cmake --install into $prefix failed"
+rel=$(sed -n 's/^readonly LIB_DIRS_SPEC="\(.*\)"$/\1/p' "$prefix/bin/ode-bpp-run")
+[[ -n "$rel" && "$rel" != /* ]] || fail "the installed launcher does not look in a relative lib dir (got '$rel')"
+for f in libode.so.8 libode_bpp.so libode_bpp_run.so ode-bpp/ode-bpp-run-solvers; do
+    [[ -e "$prefix/bin/$rel/$f" ]] || fail "not installed beside the libraries: $f"
+done
 ln -s "$prefix/bin/ode-bpp-run" "$WORK/launcher-link"
 
 g++ -O2 "$PROGRAMS/box_stack.cpp" -lode -o "$WORK/box_stack" || fail "cannot build box_stack.cpp against Debian's libode-dev"

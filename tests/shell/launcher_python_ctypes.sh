@@ -52,6 +52,12 @@ check_summary executable dantzig
 capture chol "$RUN" --solver=bpp-chol "$python" "$script"
 check_summary chol bpp-chol
 
+# Python keeps Ctrl-C as KeyboardInterrupt under the launcher: CPython installs that handler only
+# where SIGINT is at its default when it starts, so the summary's SIGINT handler must wait
+capture keyboard_interrupt "$RUN" "$python" -c 'import signal; print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)'
+[[ "$(cat "$WORK/keyboard_interrupt.out")" == True ]] \
+    || { show keyboard_interrupt; fail "under the launcher, Python's SIGINT is no longer KeyboardInterrupt"; }
+
 # by absolute path: Debian's copy is loaded beside the patched one, the launcher cannot switch it
 capture absolute "$RUN" "$python" "$script" "$(debian_libode)"
 (( STATUS == 0 )) || { show absolute; fail "absolute-path run: status $STATUS"; }

@@ -4,6 +4,9 @@
 # check that it is a full frame, not one flat colour, and that the scene's bodies are in it.
 # The bodies are drawn in saturated colours over a grey ground, so the lower three quarters of
 # the frame (below the sky) must hold a share of saturated pixels; without them it holds none.
+# The frame describes itself: scene, solver, time and solve time are written white on a dark
+# panel in its top left corner, over the bright sky, so that corner must be dark on average and
+# hold a share of white pixels (the sky alone: mean lightness ~0.85, half of it above 0.85).
 set -euo pipefail
 
 : "${ODE_BPP_BINARY_DIR:?set by ctest (tests/CMakeLists.txt)}"
@@ -14,6 +17,9 @@ frames=30
 width=800 height=600
 min_colours=256          # a flat or near-flat frame has a handful
 min_body_share=0.05      # saturated pixels below the horizon; the box stack fills ~20 %
+panel=280x50+10+10       # the text panel's corner, inside it for any font (WxH+X+Y pixels)
+max_panel_lightness=0.5  # mean lightness there; the panel: ~0.35, the sky: ~0.85
+min_text_share=0.02      # white pixels (lightness > 0.85) in that corner; text: ~6 %
 
 fail() { echo "viewer_screenshot: FAIL: $*" >&2; exit 1; }
 
@@ -48,4 +54,12 @@ body_share=$(convert "$png" -gravity south -crop 100%x75%+0+0 +repage -colorspac
 awk -v s="$body_share" -v m="$min_body_share" 'BEGIN { exit !(s > m) }' \
     || fail "saturated share below the horizon is $body_share (needs > $min_body_share): no bodies drawn"
 
-echo "viewer_screenshot: OK: $png ($size, $colours colours, body share $body_share)"
+panel_lightness=$(convert "$png" -crop "$panel" +repage -colorspace Gray -format '%[fx:mean]' info:)
+text_share=$(convert "$png" -crop "$panel" +repage -colorspace Gray -threshold 85% -format '%[fx:mean]' info:)
+awk -v l="$panel_lightness" -v m="$max_panel_lightness" 'BEGIN { exit !(l < m) }' \
+    || fail "the top left corner has mean lightness $panel_lightness (needs < $max_panel_lightness): no text panel"
+awk -v s="$text_share" -v m="$min_text_share" 'BEGIN { exit !(s > m) }' \
+    || fail "the text panel holds $text_share white pixels (needs > $min_text_share): no text"
+grep -q "no X font" "$work/viewer.log" && fail "the viewer found no X font for its text"
+
+echo "viewer_screenshot: OK: $png ($size, $colours colours, body share $body_share, panel lightness $panel_lightness, text $text_share)"

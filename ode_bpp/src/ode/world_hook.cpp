@@ -155,43 +155,8 @@ int register_all() {
     return registered;
 }
 
-/// One line on stderr (and in ODE_BPP_SUMMARY_FILE if set) when the process ends, if
-/// ODE_BPP_SUMMARY is set and the process stepped a world (ODE_BPP_SUMMARY=always: in any case):
-/// what ode-bpp-run promises about a launched program.
-void print_summary_at_exit() {
-    const char* want = secure_getenv("ODE_BPP_SUMMARY");
-    if (want == nullptr || want[0] == '\0' || std::strcmp(want, "0") == 0) return;
-    dMLCPStepStats total{};
-    const bool any = dGetMLCPProcessStats(&total) != 0;
-    // helper processes of a launched program (shells, interpreter shims) stay silent unless asked
-    if (!any && total.steps == 0 && std::strcmp(want, "always") != 0) return;
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "ode-bpp: solver=%s steps=%lld islands=%lld rows=%lld pivots=%lld fallbacks=%lld failures=%lld "
-                  "solve_seconds=%.6f%s\n",
-                  any && total.solver != nullptr ? total.solver : "none", static_cast<long long>(total.steps),
-                  static_cast<long long>(total.islands), static_cast<long long>(total.rows),
-                  static_cast<long long>(total.pivots), static_cast<long long>(total.fallbacks),
-                  static_cast<long long>(total.failures), total.seconds,
-                  any ? "" : " (no world step with constraints)");
-    std::fputs(line, stderr);
-    // secure_getenv: a setgid or setuid program must not append to a file its caller names
-    if (const char* path = secure_getenv("ODE_BPP_SUMMARY_FILE"); path != nullptr && path[0] != '\0') {
-        if (std::FILE* f = std::fopen(path, "a")) {
-            std::fputs(line, f);
-            std::fclose(f);
-        }
-    }
-}
-
-int register_at_load() {
-    const int n = register_all();
-    std::atexit(&print_summary_at_exit);  // after ODE's registry exists, so it runs before its teardown
-    return n;
-}
-
 // Registration when the library loads, so that linking (or preloading) is enough.
-[[maybe_unused]] const int g_registered_at_load = register_at_load();
+[[maybe_unused]] const int g_registered_at_load = register_all();
 
 }  // namespace
 

@@ -152,6 +152,7 @@ struct Contestant {
     std::unique_ptr<ode_bpp::scenes::Scene> scene;
     std::unique_ptr<SceneWorld> world;
     std::vector<double> step_ms, solve_ms, gaps;
+    std::vector<double> step_per_island_us, solve_per_island_us;  ///< per step with islands
     long islands = 0, rows = 0, max_rows = 0, pivots = 0, failures = 0;
     bool broken = false;  ///< a step failed or left a non-finite body: the world stops there
 
@@ -168,6 +169,10 @@ struct Contestant {
         if (!method.uses_mlcp()) return;
         const dMLCPStepStats s = last_stats(world->world());
         solve_ms.push_back(1e3 * s.seconds);
+        if (s.islands > 0) {
+            step_per_island_us.push_back(1e3 * step_ms.back() / static_cast<double>(s.islands));
+            solve_per_island_us.push_back(1e6 * s.seconds / static_cast<double>(s.islands));
+        }
         islands += s.islands;
         rows += s.rows;
         max_rows = std::max<long>(max_rows, s.max_rows);
@@ -262,8 +267,8 @@ int run_chain(const Cli& cli) {
 
 const char* kSceneHeader =
     "scene,method,steps,completed,step_median_ms,step_mean_ms,step_slowest1_ms,step_max_ms,solve_median_ms,"
-    "solve_mean_ms,islands_per_step,rows_per_island,max_rows,step_per_island_us,solve_per_island_us,pivots,failures,gap_max_m,"
-    "gap_median_m,success,detail";
+    "solve_mean_ms,islands_per_step,rows_per_island,max_rows,step_per_island_us,solve_per_island_us,"
+    "step_per_island_median_us,solve_per_island_median_us,pivots,failures,gap_max_m,gap_median_m,success,detail";
 
 /// One summary row per contestant of a scene or an island family.
 void write_scene_rows(std::ostream& csv, const std::string& label, const std::vector<Contestant>& all, long steps) {
@@ -276,8 +281,9 @@ void write_scene_rows(std::ostream& csv, const std::string& label, const std::ve
         write_times(csv, c.step_ms);
         const double rows = c.islands > 0 ? static_cast<double>(c.rows) / static_cast<double>(c.islands) : kNaN;
         csv << ',' << solve.median << ',' << solve.mean << ',' << islands << ',' << rows << ',' << c.max_rows << ','
-            << c.step_total_ms() * per_island << ',' << c.solve_total_ms() * per_island << ',' << c.pivots << ','
-            << c.failures << ',' << max_of(c.gaps) << ',' << ode_bpp::bench::summarize(c.gaps).median << ',';
+            << c.step_total_ms() * per_island << ',' << c.solve_total_ms() * per_island << ','
+            << ode_bpp::bench::summarize(c.step_per_island_us).median << ','
+            << ode_bpp::bench::summarize(c.solve_per_island_us).median << ',' << c.pivots << ',' << c.failures << ',' << max_of(c.gaps) << ',' << ode_bpp::bench::summarize(c.gaps).median << ',';
         if (c.scene) {
             const ode_bpp::scenes::SuccessReport report = c.scene->success(*c.world);
             csv << (report.ok ? "yes" : "no") << ',' << csv_text(report.detail) << '\n';

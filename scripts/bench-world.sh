@@ -14,7 +14,8 @@
 #   4. time per island against island size, 1 to ~500 rows, bpp vs dantzig    -> islands.csv
 #   5. bpp's distance to the physical limit inside ODE, per island             -> limit.csv
 #   6. callgrind: instructions per dWorldStep on the crane (bpp, QuickStep-20) -> callgrind.csv
-#   7. long chains: joint gap against the solve's accuracy and the time step   -> conditioning.csv
+#   7. long chains: joint gap against the solve's accuracy and the time step   -> conditioning.csv,
+#      and the same tear with dantzig on a shorter, heavier chain              -> tension.csv
 # A failed step is appended to OUT_DIR/failures.txt and the rest goes on; exit status 1 then.
 # --quick: fewer steps and seconds everywhere (about a minute and a half).
 set -uo pipefail
@@ -155,6 +156,15 @@ for run_spec in 2000:bpp:0.0166666667 2500:bpp:0.0166666667 2500:refined:0.01666
   run "conditioning-$links-$variant-$h" "$CONDITIONING" --links "$links" --ratio 40 --seconds "$CONDITIONING_SECONDS" \
     --step "$h" --variant "$variant" --summary "$WORLD/conditioning.csv"
   say "   $links links, $variant, h = $h"
+done
+
+# the same tear with dantzig, where its dense step can run: mass ratio 3 (top tension 34 kN at 100
+# links, 99 kN at 300)
+for run_spec in 100:bpp 300:bpp 300:dantzig; do
+  IFS=: read -r links method <<< "$run_spec"
+  run "tension-$links-$method" "$STEP" chain --links "$links" --method "$method" --ratio 3 --steps 120 \
+    --csv "$WORLD/tension.csv"
+  say "   $links links at mass ratio 3, $method"
 done
 
 say "done: $WORLD"

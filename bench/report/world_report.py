@@ -391,8 +391,8 @@ def classic_table(lines, world, targets):
                  "total islands, which the slowest steps dominate); for dantzig ODE builds the dense A before the call, "
                  "for bpp the call assembles A from J itself. *Step*: the whole `dWorldStep` per island, the same way.\n")
     lines.append("| scene | islands per step | rows per island | bpp solve per island | dantzig | bpp / dantzig | "
-                 "bpp step per island | dantzig | bpp / dantzig |")
-    lines.append("|---|---|---|---|---|---|---|---|---|")
+                 "bpp step per island | dantzig | bpp / dantzig | same islands |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|")
     by = {(r["scene"], r["method"]): r for r in rows}
     slower = []
     for scene in CLASSIC_SCENES:
@@ -405,7 +405,7 @@ def classic_table(lines, world, targets):
             slower.append(f"{scene} {solve:.2f}×")
         lines.append(f"| {scene} | {num(b['islands_per_step']):.1f} | {num(b['rows_per_island']):.1f} | "
                      f"{per_island(b, 'solve')} | {per_island(d, 'solve')} | {solve:.2f}× | "
-                     f"{per_island(b, 'step')} | {per_island(d, 'step')} | {step:.2f}× |")
+                     f"{per_island(b, 'step')} | {per_island(d, 'step')} | {step:.2f}× | {islands_note(b, d)} |")
     lines.append("")
     targets.add("small islands: bpp's median solve per island ≤ dantzig's on every classic demo and the tiny-island "
                 "scene (bpp / dantzig where slower)", "; ".join(slower) or "none slower", "≤ 1× everywhere", not slower)
@@ -414,6 +414,13 @@ def classic_table(lines, world, targets):
 def per_island(row, what):
     """'median µs (mean µs)' of the solve or the step per island."""
     return f"{num(row[what + '_per_island_median_us']):.2f} µs ({num(row[what + '_per_island_us']):.2f})"
+
+
+def islands_note(b, d):
+    """'yes', or what dantzig's world had instead (see same_islands)."""
+    if same_islands(b, d):
+        return "yes"
+    return f"no: {num(d['islands_per_step']):.1f} islands of {num(d['rows_per_island']):.1f} rows with dantzig"
 
 
 def same_islands(b, d):
@@ -454,7 +461,7 @@ def islands_chart(lines, world):
                      f"{num(b['solve_per_island_median_us']) / num(d['solve_per_island_median_us']):.2f}× | "
                      f"{num(b['step_per_island_median_us']):.2f} µs | {num(d['step_per_island_median_us']):.2f} µs | "
                      f"{num(b['step_per_island_median_us']) / num(d['step_per_island_median_us']):.2f}× | "
-                     f"{'yes' if same else 'no: ' + str(round(num(d['islands_per_step']), 1)) + ' islands of ' + str(round(num(d['rows_per_island']), 1)) + ' rows with dantzig'} |")
+                     f"{islands_note(b, d)} |")
     lines.append("")
     charts = os.path.join(os.path.dirname(world), "charts")
     plots = []
@@ -477,6 +484,20 @@ def islands_chart(lines, world):
 # long chains
 
 
+# The sweeps' chain (demos/scenes/sweep_scenes.cpp): a 100 kg load, 0.5 m links whose rotational
+# inertia is raised to that of a link as heavy as the load (I = M l^2 / 12 for a slender link).
+SWEEP_LOAD_KG, SWEEP_LINK_M, GRAVITY = 100.0, 0.5, 9.81
+
+
+def top_mode_step(links, ratio, h):
+    """omega h of the topmost link's rotational mode, omega^2 = T l / I, under the tension of the
+    whole chain T = (N m + M) g (docs/benchmarks.md, "Long chains"): an explicit step of that mode
+    is unstable beyond about 2."""
+    tension = (links * SWEEP_LOAD_KG / ratio + SWEEP_LOAD_KG) * GRAVITY
+    inertia = SWEEP_LOAD_KG * SWEEP_LINK_M ** 2 / 12
+    return h * math.sqrt(tension * SWEEP_LINK_M / inertia)
+
+
 def conditioning_table(lines, world):
     rows = read_csv(os.path.join(world, "conditioning.csv"))
     lines.append("### Long chains: ODE's model, not the conditioning of A\n")
@@ -488,13 +509,24 @@ def conditioning_table(lines, world):
                  "long-double sparse LDLᵀ, and one of them drives the world. Residual: |b − A x|∞/|b|∞ in long double; "
                  "error: distance to the long-double answer, relative; cond₂(A) by power iteration; ω: the fastest link's "
                  "angular speed; drift: ODE's linearised-joint estimate (ω h)² ℓ / (2 ERP).\n")
-    lines.append("| links | rows | h | drives | joint gap | bpp residual | bpp error | refined error | cond₂(A) | ω max | drift estimate |")
-    lines.append("|---|---|---|---|---|---|---|---|---|---|---|")
+    lines.append("| links | rows | h | drives | joint gap | bpp residual | bpp error | refined error | cond₂(A) | ω max | drift estimate | top link ω h estimate |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
+        top = top_mode_step(int(r["links"]), num(r["ratio"]), num(r["step"]))
         lines.append(f"| {r['links']} | {r['rows']} | 1/{1 / num(r['step']):.0f} | {r['variant']} | {num(r['gap_max_m']):.1e} m | "
                      f"{num(r['residual_bpp_max']):.1e} | {num(r['error_bpp_max']):.1e} | {num(r['error_refined_max']):.1e} | "
-                     f"{num(r['cond_max']):.1e} | {num(r['omega_max']):.2g} rad/s | {num(r['linearisation_drift_max_m']):.1e} m |")
+                     f"{num(r['cond_max']):.1e} | {num(r['omega_max']):.2g} rad/s | {num(r['linearisation_drift_max_m']):.1e} m | "
+                     f"{top:.2f} |")
     lines.append("")
+    tension = read_csv(os.path.join(world, "tension.csv"))
+    if tension:
+        lines.append("The same tear with dantzig, on a shorter chain of heavier links (mass ratio 3, h = 1/60, the whole run):\n")
+        lines.append("| links | rows | method | joint gap | top link ω h estimate |")
+        lines.append("|---|---|---|---|---|")
+        for r in tension:
+            lines.append(f"| {r['links']} | {r['rows']} | {r['method']} | {num(r['gap_max_m']):.1e} m | "
+                         f"{top_mode_step(int(r['links']), num(r['ratio']), 1 / 60):.2f} |")
+        lines.append("")
     lines.append("Reading: the solve is accurate to about 1e-11 (refined: 1e-14) at cond₂(A) ≈ 1e7 whether the chain holds "
                  "or tears, and the long-double and refined solves tear it just the same; halving h holds it. "
                  "docs/benchmarks.md explains the mechanism.\n")

@@ -86,7 +86,8 @@ bench: build
 	  echo "[bench] warning: the peers' packages could not be installed; the report runs without them"
 	@echo "[bench] reconfiguring so that bench/peers finds the peer packages"
 	@cmake -S . -B $(CMAKE_DIR) >/dev/null
-	@cmake --build $(CMAKE_DIR) -j$(JOBS) --target bench_corpus bench_fig4 bench_fig5 ode-bpp-demo
+	@cmake --build $(CMAKE_DIR) -j$(JOBS) --target bench_corpus bench_fig4 bench_fig5 ode-bpp-demo bench_world_step \
+	  chain_conditioning
 	@bash scripts/bench-report.sh $(CMAKE_DIR) results/bench $(BENCH_ARGS)
 
 # The former name of `make bench`.

@@ -12,7 +12,10 @@
 #   4. Fig. 4 of the paper from bench_fig4 (--quick: 0.02 s per benchmark)
 #   5. Fig. 5: bench_fig5 on each scene's largest captured island
 #   6. callgrind instruction counts of bpp, dantzig and bpp-chol on a few frames (if valgrind is there)
-#   7. tables, targets and charts -> OUT_DIR/report.md, OUT_DIR/charts/*.png|svg
+#   7. the whole world step, method against method: chain scaling, the scenes against QuickStep,
+#      small islands, the physical limit inside ODE, the crane's instructions per step, long chains
+#      (scripts/bench-world.sh) -> OUT_DIR/world/
+#   8. tables, targets and charts -> OUT_DIR/report.md, OUT_DIR/charts/*.png|svg
 # A step that fails (a scene's capture, one tool) is written to OUT_DIR/failures.txt and reported
 # in report.md; the run goes on with the rest. The exit status is 1 when anything failed.
 # --quick: 5 s per scene, 3 repetitions, peers on every 4th captured frame (a few minutes);
@@ -190,6 +193,12 @@ elif [[ -s $OUT_DIR/bench.csv ]]; then
     failed "callgrind: no island with tight rows in bench.csv"
   fi
 fi
+
+say "whole world step: chain scaling, scenes against QuickStep, small islands, physical limit (scripts/bench-world.sh)"
+WORLD_ARGS=()
+[[ $QUICK == 1 ]] && WORLD_ARGS=(--quick)
+bash "$HERE/scripts/bench-world.sh" "$BUILD_DIR" "$OUT_DIR" "${WORLD_ARGS[@]}" ||
+  say "whole world step: some runs failed (listed in failures.txt)"
 
 say "report and charts"
 if ! python3 "$HERE/bench/report/make_report.py" "$OUT_DIR" "$MODE"; then

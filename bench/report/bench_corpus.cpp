@@ -27,8 +27,10 @@
 // bpp's "limit" (--limit): bpp re-solved from its own final index set (Options::warm_start)
 // with max_pivots = 1, i.e. the cost of factoring for the final A_FF plus one solve. It
 // approximates the time of a method that guessed the index set right at once; it includes the
-// ordering and the factorization of A before the rows of T are taken out, so it is an upper
-// bound of one Cholesky of A_FF plus one solve.
+// ordering and the factorization of A before the rows of T are taken out, and every fixed cost
+// of a solve (validation, residuals), so it is an upper bound of one Cholesky of A_FF plus one
+// solve. Beside it, --limit also writes the *physical* limit (physical_limit.h): that one
+// factorization of the final A_FF in envelope storage and one solve, timed alone.
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -47,6 +49,7 @@
 #include "ode_bpp/residuals.h"
 #include "ode_bpp/solver.h"
 #include "peer_registry.h"
+#include "physical_limit.h"
 
 namespace {
 
@@ -255,6 +258,7 @@ struct Measurement {
     double factor_error = std::numeric_limits<double>::quiet_NaN();
     double limit_us = std::numeric_limits<double>::quiet_NaN();
     std::string limit_status;
+    double physical_limit_us = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The group of a file: the name of the directory holding it ("crane-cfm1e-10").
@@ -267,8 +271,10 @@ std::string meta_or(const ode_bpp::MlcpFile& file, const char* key, const std::s
     return value ? *value : fallback;
 }
 
-/// Times bpp warm-started from its own final index set with one pivot step (see the header).
-void measure_limit(const ode_bpp::Problem& problem, int repeat, Measurement& bpp) {
+/// Times bpp warm-started from its own final index set with one pivot step, and the physical
+/// limit of that index set (see the header).
+void measure_limit(const ode_bpp::MlcpFile& file, int repeat, Measurement& bpp) {
+    const ode_bpp::Problem problem = file.view();
     ode_bpp::Options options;
     options.method = ode_bpp::Method::Bpp;
     options.record_steps = false;
@@ -282,6 +288,7 @@ void measure_limit(const ode_bpp::Problem& problem, int repeat, Measurement& bpp
     for (int r = 0; r < repeat; ++r) times.push_back(timed_solve(problem, options, x, &result));
     bpp.limit_us = median(times);
     bpp.limit_status = ode_bpp::to_string(result.status);
+    bpp.physical_limit_us = ode_bpp::bench::physical_limit_us(file, bpp.result.states, repeat);
 }
 
 /// The relative natural residual (as Result::relative_natural_residual) over the rows without
@@ -318,8 +325,9 @@ void judge_peer_answer(const ode_bpp::Problem& problem, Measurement& m) {
     m.result.tight = 0;
 }
 
-std::vector<Measurement> measure_file(const ode_bpp::Problem& problem, const std::vector<Variant>& variants,
+std::vector<Measurement> measure_file(const ode_bpp::MlcpFile& file, const std::vector<Variant>& variants,
                                       const Cli& cli, std::size_t file_index, bool with_peers) {
+    const ode_bpp::Problem problem = file.view();
     const std::size_t count = variants.size();
     std::vector<Measurement> out(count);
     for (std::size_t v = 0; v < count; ++v) {
@@ -347,7 +355,7 @@ std::vector<Measurement> measure_file(const ode_bpp::Problem& problem, const std
             ode_bpp::Result with_error = ode_bpp::solve(problem, options, out[v].x.data());
             out[v].factor_error = with_error.factor_error;
         }
-        if (cli.limit && variants[v].name == "bpp") measure_limit(problem, cli.repeat, out[v]);
+        if (cli.limit && variants[v].name == "bpp") measure_limit(file, cli.repeat, out[v]);
     }
     return out;
 }
@@ -355,7 +363,13 @@ std::vector<Measurement> measure_file(const ode_bpp::Problem& problem, const std
 const char* kHeader =
     "group,scene,frame,island,file,n,nub,cond,method,iterations,status,time_us,pivots,murty_pivots,"
     "tight,natural_residual,relative_natural_residual,scaled_natural_residual,friction_error,"
-    "factor_error,fallback,limit_us,limit_status,nonfriction_residual\n";
+    "factor_error,fallback,limit_us,limit_status,nonfriction_residual,physical_limit_us,friction_rows\n";
+
+/// Rows with a friction coupling (findex >= 0): Frozen friction solves such an island twice
+/// (frictionless first), so its fewest pivot steps are 2, else 1.
+long friction_rows(const ode_bpp::MlcpFile& file) {
+    return std::count_if(file.findex.begin(), file.findex.end(), [](int f) { return f >= 0; });
+}
 
 void write_row(std::ostream& csv, const ode_bpp::MlcpFile& file, const std::string& path, double cond,
                const Variant& variant, const Measurement& m) {
@@ -368,7 +382,8 @@ void write_row(std::ostream& csv, const ode_bpp::MlcpFile& file, const std::stri
         << ',' << r.tight << ',' << r.natural_residual << ',' << r.relative_natural_residual << ','
         << r.scaled_natural_residual << ',' << r.friction_error << ',' << m.factor_error << ','
         << (r.fallback == ode_bpp::Fallback::None ? "-" : ode_bpp::to_string(r.fallback)) << ',' << m.limit_us << ','
-        << (m.limit_status.empty() ? "-" : m.limit_status) << ',' << m.nonfriction_residual << '\n';
+        << (m.limit_status.empty() ? "-" : m.limit_status) << ',' << m.nonfriction_residual << ','
+        << m.physical_limit_us << ',' << friction_rows(file) << '\n';
 }
 
 void warm_up(const std::vector<std::string>& files, const std::vector<Variant>& variants, int count) {
@@ -427,7 +442,7 @@ int main(int argc, char** argv) {
         }
         const double cond = cli.cond ? condition_number(read.file) : std::numeric_limits<double>::quiet_NaN();
         const std::vector<Measurement> measured =
-            measure_file(read.file.view(), variants, cli, k, peers_on(read.file, cli.peer_every));
+            measure_file(read.file, variants, cli, k, peers_on(read.file, cli.peer_every));
         for (std::size_t v = 0; v < variants.size(); ++v)
             if (measured[v].measured) write_row(csv, read.file, files[k], cond, variants[v], measured[v]);
         if ((k + 1) % 100 == 0 || k + 1 == files.size())

@@ -3,7 +3,8 @@
 
 Reads OUT_DIR/bench.csv (bench_corpus: one row per file x method variant, peers included),
 OUT_DIR/steps/*.csv (ode-bpp-demo's per-island-per-step CSV) and, if present, OUT_DIR/bench_fig4.csv,
-OUT_DIR/fig5.csv with OUT_DIR/fig5/*.dat, OUT_DIR/callgrind.csv and OUT_DIR/failures.txt; writes
+OUT_DIR/fig5.csv with OUT_DIR/fig5/*.dat, OUT_DIR/callgrind.csv, OUT_DIR/world/*.csv (the whole world
+step, scripts/bench-world.sh; its section is world_report.py's) and OUT_DIR/failures.txt; writes
 OUT_DIR/report.md and OUT_DIR/charts/*.png|svg (gnuplot). Standard library only. A section whose
 inputs are missing or broken says so in the report instead of stopping it.
 
@@ -18,6 +19,8 @@ import statistics
 import subprocess
 import sys
 from collections import defaultdict
+
+import world_report
 
 SCENES = ["crane", "winch", "parkour", "offshore", "forklift", "forwarder"]
 REGIMES = [("cfm1e-10", "ODE's default CFM 1e-10"), ("comp1e-8", "the paper's compliance 1e-8 (CFM = c/h)")]
@@ -764,9 +767,12 @@ def main():
     missed = section(body, failures, "targets", targets, body, bench) or []
     section(body, failures, "accuracy", accuracy, body, bench, missed)
     section(body, failures, "factor error target", factor_target, body, bench, missed)
+    world = []
+    section(world, failures, "sparse world step", world_report.section, world, out_dir, bench, missed, failures)
     body.append("### Missed targets\n")
     body.extend([f"- {m}" for m in missed] or ["- none"])
     body.append("")
+    body.extend(world)
     section(body, failures, "peers", peers_table, body, bench)
     body.append("## Tables\n")
     for regime, _ in REGIMES:

@@ -8,6 +8,7 @@ std::unique_ptr<Scene> make_classic_chain();
 std::unique_ptr<Scene> make_classic_buggy();
 std::unique_ptr<Scene> make_classic_cannon();
 std::unique_ptr<Scene> make_classic_motors();
+std::unique_ptr<Scene> make_classic_islands();
 
 std::vector<std::pair<std::string, SceneFactory>> classic_scenes() {
     return {
@@ -16,6 +17,7 @@ std::vector<std::pair<std::string, SceneFactory>> classic_scenes() {
         {"buggy", make_classic_buggy},
         {"cannon", make_classic_cannon},
         {"motors", make_classic_motors},
+        {"islands", make_classic_islands},
     };
 }
 

@@ -6,11 +6,13 @@
 #include "ode_bpp/ode.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 #include "scenes/classic.h"
+#include "scenes/joint_gap.h"
 #include "scenes/paper_scenes.h"
 
 namespace ode_bpp::scenes {
@@ -23,11 +25,6 @@ constexpr double kContactSurfaceLayer = 0.001;  // [m]
 // Caps the ERP push-out of deep contacts so that a heavy body that sinks in one step is not
 // launched by the position correction of the next.
 constexpr double kContactMaxCorrectingVel = 2.0;  // [m/s]
-
-double distance(const dVector3 a, const dVector3 b) {
-    return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                     (a[2] - b[2]) * (a[2] - b[2]));
-}
 
 bool is_finite_position(dBodyID body) {
     const dReal* p = dBodyGetPosition(body);
@@ -93,19 +90,7 @@ void SceneWorld::track_joint(dJointID joint) { tracked_joints_.push_back(joint);
 
 double SceneWorld::max_joint_error() const {
     double worst = 0;
-    for (dJointID j : tracked_joints_) {
-        dVector3 a1, a2;
-        switch (dJointGetType(j)) {
-        case dJointTypeBall: dJointGetBallAnchor(j, a1); dJointGetBallAnchor2(j, a2); break;
-        case dJointTypeHinge: dJointGetHingeAnchor(j, a1); dJointGetHingeAnchor2(j, a2); break;
-        case dJointTypeUniversal:
-            dJointGetUniversalAnchor(j, a1);
-            dJointGetUniversalAnchor2(j, a2);
-            break;
-        default: continue;
-        }
-        worst = std::max(worst, distance(a1, a2));
-    }
+    for (dJointID j : tracked_joints_) worst = std::max(worst, anchor_gap(j).value_or(0.0));
     return worst;
 }
 
@@ -149,8 +134,10 @@ void SceneWorld::collide_pair(dGeomID a, dGeomID b) {
 bool SceneWorld::step() {
     last_contacts_ = 0;
     dSpaceCollide(space_, this, &SceneWorld::near_callback);
+    const auto start = std::chrono::steady_clock::now();
     const int ok = params_.stepper == "quickstep" ? dWorldQuickStep(world_, params_.step)
                                                   : dWorldStep(world_, params_.step);
+    last_step_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     dJointGroupEmpty(contacts_);
     time_ += params_.step;
     ++steps_;

@@ -79,9 +79,12 @@ public:
     const std::vector<dBodyID>& bodies() const { return bodies_; }
     /// Registers a joint whose anchors must coincide (ball, hinge, universal); see max_joint_error().
     void track_joint(dJointID joint);
-    /// Largest distance [m] between the two bodies' anchor points over the tracked joints:
-    /// the constraint drift a sound simulation keeps small.
+    /// Largest anchor gap [m] (joint_gap.h) over the tracked joints: the constraint drift a
+    /// sound simulation keeps small.
     double max_joint_error() const;
+    /// Wall time [s] of the last step()'s dWorldStep or dWorldQuickStep call alone (collision
+    /// and contact creation excluded): what the benchmarks compare between methods.
+    double last_step_seconds() const { return last_step_seconds_; }
     /// Contact joints created by the last step().
     int last_contacts() const { return last_contacts_; }
 
@@ -102,6 +105,7 @@ private:
     ContactTuner tuner_;
     double time_ = 0;
     long steps_ = 0;
+    double last_step_seconds_ = 0;
 };
 
 class Scene {

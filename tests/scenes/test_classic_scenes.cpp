@@ -110,7 +110,7 @@ INSTANTIATE_TEST_SUITE_P(Classic, ClassicScene, ::testing::ValuesIn(classic_name
 // The criteria must be able to fail: scenes whose criterion needs motion are not yet
 // successful when nothing has happened...
 TEST(ClassicCriteria, RejectAnUnrunScene) {
-    for (const std::string name : {"chain", "buggy", "cannon", "motors"}) {
+    for (const std::string name : {"chain", "buggy", "cannon", "motors", "islands"}) {
         std::unique_ptr<Scene> scene = make_classic(name);
         ASSERT_NE(scene, nullptr) << name;
         SceneParams params;
@@ -132,6 +132,26 @@ TEST(ClassicCriteria, RejectAShovedStack) {
     for (dBodyID b : w.bodies()) dBodySetLinearVel(b, 3.0, 0, 0);  // every box shoved sideways
     const long steps = std::lround(1.0 / params.step);
     for (long i = 0; i < steps; ++i) ASSERT_TRUE(w.step());
+    EXPECT_FALSE(scene->success(w).ok) << scene->success(w).detail;
+}
+
+// ...and marbles that do not roll (stopped after the build) do not pass as rolling.
+TEST(ClassicCriteria, RejectStoppedMarbles) {
+    std::unique_ptr<Scene> scene = make_classic("islands");
+    ASSERT_NE(scene, nullptr);
+    SceneParams params;
+    params.solver = "dantzig";
+    SceneWorld w(params);
+    scene->build(w);
+    for (dBodyID b : w.bodies()) {
+        dBodySetLinearVel(b, 0, 0, 0);
+        dBodySetAngularVel(b, 0, 0, 0);
+    }
+    const long steps = std::lround(1.0 / params.step);
+    for (long i = 0; i < steps; ++i) {
+        scene->control(w, w.time());
+        ASSERT_TRUE(w.step());
+    }
     EXPECT_FALSE(scene->success(w).ok) << scene->success(w).detail;
 }
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "scenes/build_helpers.h"
+#include "scenes/joint_gap.h"
 #include "scenes/paper_scenes.h"
 #include "scenes/scene.h"
 
@@ -142,6 +143,26 @@ TEST(SceneWorld, JointErrorIsTheAnchorGap) {
     add_ball(w, a, b, {1, 0, 10});
     dBodySetPosition(b, 2.3, 0.4, 10);  // moves b's anchor by (0.3, 0.4, 0): 0.5 m
     EXPECT_NEAR(w.max_joint_error(), 0.5, 1e-12);
+}
+
+// The world-wide measure sees joints nobody tracked, and a hinge-2 joint's gap only across its
+// axis 1, along which ODE's suspension lets the anchors part by design.
+TEST(SceneWorld, AnchorGapOfEveryJointHinge2AcrossItsAxis) {
+    SceneWorld w(dantzig_params());
+    dBodyID a = add_body(w, box_mass(1, {1, 1, 1}), {0, 0, 10});
+    dBodyID b = add_body(w, box_mass(1, {1, 1, 1}), {2, 0, 10});
+    dJointID hinge2 = dJointCreateHinge2(w.world(), nullptr);
+    dJointAttach(hinge2, a, b);
+    dJointSetHinge2Anchor(hinge2, 1, 0, 10);
+    const dReal axis1[3] = {0, 0, 1}, axis2[3] = {0, 1, 0};
+    dJointSetHinge2Axes(hinge2, axis1, axis2);
+    EXPECT_NEAR(max_anchor_gap(w.bodies()), 0.0, 1e-12);
+    EXPECT_NEAR(w.max_joint_error(), 0.0, 1e-12);  // not tracked
+    dBodySetPosition(b, 2.3, 0, 10.2);  // 0.2 m along axis 1 (suspension), 0.3 m across it
+    EXPECT_NEAR(*anchor_gap(hinge2), 0.3, 1e-12);
+    EXPECT_NEAR(max_anchor_gap(w.bodies()), 0.3, 1e-12);
+    dJointID slider = add_slider(w, a, b, {1, 0, 0});
+    EXPECT_FALSE(anchor_gap(slider).has_value());
 }
 
 TEST(SceneRegistry, KnowsThePapersSixScenes) {

@@ -1,0 +1,21 @@
+// bench/report/physical_limit.h: the least work of a direct method that knows the answer's index
+// set (the "physical limit"): one Cholesky factorization of the final A_FF in envelope
+// (skyline) storage plus one solve with it, timed alone.
+#pragma once
+
+#include <vector>
+
+#include "ode_bpp/io.h"
+#include "ode_bpp/solver.h"
+
+namespace ode_bpp::bench {
+
+/// Median over `repeat` rounds of the time [us] of skyline_cholesky + skyline_solve on A_FF,
+/// F = the rows whose state is Free, in the file's Cuthill-McKee order (its constraint graph, as
+/// bench_fig5 draws it) restricted to F. Everything else (extracting A_FF, the order, loading the
+/// envelope) is done beforehand and not timed. Each round factors enough prepared copies of the
+/// envelope to last well above the clock's resolution and reports the time per copy.
+/// Returns 0 when F is empty and NaN when A_FF is not positive definite in floating point.
+double physical_limit_us(const MlcpFile& file, const std::vector<RowState>& states, int repeat);
+
+}  // namespace ode_bpp::bench

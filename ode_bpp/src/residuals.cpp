@@ -50,10 +50,21 @@ double row_scale(const Problem& p, const linalg::SymmetricRows& A, const std::ve
     return s;
 }
 
+/// The bounds of row i in the fixed-bound problem x implies (Residuals::fixed_bound): +-|x_i| for a
+/// bounded friction row, `bounds` (its effective bounds) for any other row.
+std::pair<double, double> implied_bounds(const Problem& p, ConstStrided x, int i, std::pair<double, double> bounds) {
+    if (p.findex == nullptr || p.findex[i] < 0 || i < p.nub || is_unbounded_friction_row(p, i)) return bounds;
+    return {-std::abs(x[i]), std::abs(x[i])};
+}
+
 }  // namespace
 
+bool is_unbounded_friction_row(const Problem& p, int i) {
+    return i >= p.nub && p.findex != nullptr && p.findex[i] >= 0 && p.hi[i] == kInf;
+}
+
 std::pair<double, double> effective_bounds(const Problem& p, ConstStrided x, int i) {
-    if (i < p.nub) return {-kInf, kInf};
+    if (i < p.nub || is_unbounded_friction_row(p, i)) return {-kInf, kInf};
     if (p.findex != nullptr && p.findex[i] >= 0) {
         const double normal = x[p.findex[i]];
         const double bound = normal == 0 ? 0.0 : std::abs(p.hi[i] * normal);
@@ -99,11 +110,18 @@ Residuals compute_residuals(const Problem& p, const linalg::SymmetricRows& A, Co
         const double diag = A.diag(i);
         const double scaled = std::abs(x[i] - clamp_to(x[i] - w[i] / diag, bounds));
         if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled / row_scale(p, A, scale, i));
+        const auto implied = implied_bounds(p, x, i, bounds);
+        r.fixed_bound = std::max(r.fixed_bound, std::abs(x[i] - clamp_to(x[i] - w[i], implied)));
+        const double scaled_fixed = std::abs(x[i] - clamp_to(x[i] - w[i] / diag, implied));
+        if (scaled_fixed > 0)
+            r.scaled_fixed_bound = std::max(r.scaled_fixed_bound, scaled_fixed / row_scale(p, A, scale, i));
         if (is_free(p, x, states, i)) r.free = std::max(r.free, std::abs(w[i]));
         if (p.findex != nullptr && p.findex[i] >= 0)
             r.friction = std::max(r.friction, std::abs(x[i]) - bounds.second);
     }
-    r.relative_natural = r.natural / std::max(1.0, inf_norm(p.b, p.n));
+    const double b_scale = std::max(1.0, inf_norm(p.b, p.n));
+    r.relative_natural = r.natural / b_scale;
+    r.fixed_bound /= b_scale;
     return r;
 }
 

@@ -161,6 +161,17 @@ dJointID add_slider(SceneWorld& w, dBodyID a, dBodyID b, Vec3 axis) {
     return j;
 }
 
+dJointID add_hydraulic_cylinder(SceneWorld& w, dBodyID A, Vec3 a, dBodyID B, Vec3 b, double barrel_mass,
+                                double rod_mass, Vec3 hinge_axis) {
+    const Vec3 u = normalized(b - a);
+    const double length = norm(b - a);
+    dBodyID barrel = add_beam(w, barrel_mass, 0.12, a, a + (0.55 * length) * u);
+    dBodyID rod = add_beam(w, rod_mass, 0.06, b - (0.55 * length) * u, b);
+    add_hinge(w, A, barrel, a, hinge_axis);
+    add_hinge(w, rod, B, b, hinge_axis);
+    return add_slider(w, rod, barrel, u);
+}
+
 dJointID add_fixed(SceneWorld& w, dBodyID a, dBodyID b) {
     dJointID j = dJointCreateFixed(w.world(), nullptr);
     dJointAttach(j, a, b);
@@ -313,6 +324,22 @@ dBodyID CompositeBody::build(SceneWorld& w, Vec3 reference, std::vector<dGeomID>
 double tilt(dBodyID b) {
     const Vec3 up = world_vector(b, {0, 0, 1});
     return std::acos(std::clamp(up.z, -1.0, 1.0));
+}
+
+void add_bin(SceneWorld& w, Vec3 centre, Vec3 inner, double thickness) {
+    const double z = 0.5 * inner.z;
+    const double half_x = 0.5 * (inner.x + thickness), half_y = 0.5 * (inner.y + thickness);
+    const double outer_x = inner.x + 2 * thickness;
+    for (int side : {-1, 1}) {
+        add_static_box(w, {thickness, inner.y, inner.z}, {centre.x + side * half_x, centre.y, z});
+        add_static_box(w, {outer_x, thickness, inner.z}, {centre.x, centre.y + side * half_y, z});
+    }
+}
+
+double fastest_body_speed(const SceneWorld& w) {
+    double fastest = 0;
+    for (dBodyID b : w.bodies()) fastest = std::max(fastest, norm(to_vec(dBodyGetLinearVel(b))));
+    return fastest;
 }
 
 }  // namespace ode_bpp::scenes

@@ -6,6 +6,8 @@
 #include <ode/ode.h>
 
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <vector>
 
 #include "scenes/scene.h"
@@ -72,6 +74,13 @@ dJointID add_hinge(SceneWorld& w, dBodyID a, dBodyID b, Vec3 anchor, Vec3 axis);
 dJointID add_slider(SceneWorld& w, dBodyID a, dBodyID b, Vec3 axis);
 dJointID add_fixed(SceneWorld& w, dBodyID a, dBodyID b);
 
+/// A hydraulic cylinder from point `a` on body A to point `b` on body B (world frame, null: the
+/// static environment): a barrel hinged to A at a and a rod hinged to B at b, both about
+/// `hinge_axis`, sliding on each other along a -> b. Returns the slider: its motor is the
+/// cylinder (drive_slider), its force limit the pressure.
+dJointID add_hydraulic_cylinder(SceneWorld& w, dBodyID A, Vec3 a, dBodyID B, Vec3 b, double barrel_mass,
+                                double rod_mass, Vec3 hinge_axis = {0, 1, 0});
+
 /// Velocity motors: the joint drives its coordinate at `velocity` [rad/s or m/s] with at most
 /// `max_force` [Nm or N] (one boxed row of the MLCP, |impulse| <= max_force * h). The motor row's
 /// CFM is kDriveCfm whatever the world's: the paper's compliance is that of the joints and
@@ -137,6 +146,29 @@ private:
     };
     std::vector<Part> parts_;
     void add(Shape shape, Vec3 size, Vec3 offset, const dMatrix3 R, dMass m);
+};
+
+/// An open bin on the ground: four static walls around the rectangle |x - centre.x| < inner.x / 2,
+/// |y - centre.y| < inner.y / 2 (inner.z: the walls' height), `thickness` thick; the ground is
+/// its floor.
+void add_bin(SceneWorld& w, Vec3 centre, Vec3 inner, double thickness);
+
+/// Largest linear speed [m/s] of the world's bodies (at rest: near 0).
+double fastest_body_speed(const SceneWorld& w);
+
+/// Seeded uniform numbers, the same on every machine (std::mt19937_64 with an explicit
+/// transform: the standard distributions differ between libraries), for scenes whose bodies
+/// are placed at random.
+class SceneRandom {
+public:
+    explicit SceneRandom(std::uint64_t seed) : engine_(seed) {}
+    /// Uniform in [lo, hi).
+    double uniform(double lo, double hi) {
+        return lo + (hi - lo) * static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+    }
+
+private:
+    std::mt19937_64 engine_;
 };
 
 /// The angle [rad] between the body's z axis and the world's z axis (tilt of a vehicle).

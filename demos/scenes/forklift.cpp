@@ -6,9 +6,14 @@
 //  - chassis with counterweight and mast; two driven front wheels on hinges, turning at one
 //    commanded speed (no differential, as on many forklifts: in the turn one wheel must skid);
 //    two steered rear wheels on hinge-2 joints;
+//  - the mast, hinged to the chassis at its foot and tilted by two hydraulic tilt cylinders: it
+//    tilts back once the crate is lifted, as a driver does before travelling, so that the load
+//    leans against the carriage (the cylinders close two planar loops, whose hinges repeat each
+//    other's out-of-plane rows);
 //  - the lift: a crosshead on the mast, raised by a slider motor (the lift cylinder), and the
-//    fork carriage sliding on the mast, hanging from the crosshead by two lift chains of light
-//    links: the load path of the crate runs through 1.1 kg links (Table 2's 2,700:1);
+//    fork carriage sliding on the mast, hanging from the crosshead by two lift chains of 20
+//    light links: the load path of the crate runs through 0.85 kg links (Table 2's 2,700:1
+//    against the chassis; with the mast and the chains' links, Table 2's 300 rows);
 //  - a pallet whose stringers the tines slip between, and the crate on the pallet: the crate
 //    stays on only through the crate-pallet and pallet-tine friction;
 //  - the cone: a static marker at the turn's centre.
@@ -28,21 +33,30 @@ constexpr double kPi = 3.14159265358979323846;
 // masses [kg]: Sec. 4.1.1 (forklift 3,000 kg, crate 100 kg)
 constexpr double kForkliftMass = 3000, kCrateMass = 100, kPalletMass = 25;
 constexpr double kFrontWheelMass = 60, kRearWheelMass = 40, kCarriageMass = 120, kCrossheadMass = 40;
-constexpr int kChainLinks = 6;
-constexpr double kLinkMass = 1.1;
+constexpr double kMastMass = 260, kTiltBarrelMass = 15, kTiltRodMass = 8;
+constexpr int kChainLinks = 20;
+constexpr double kLinkMass = 0.85;
 constexpr double kChassisMass = kForkliftMass - 2 * kFrontWheelMass - 2 * kRearWheelMass - kCarriageMass -
-                                kCrossheadMass - 2 * kChainLinks * kLinkMass;
-// Link inertia x this (NOTES, modelling trap): ~1.2 kN per chain on 1.1 kg links.
+                                kCrossheadMass - kMastMass - 2 * (kTiltBarrelMass + kTiltRodMass) -
+                                2 * kChainLinks * kLinkMass;
+// Link inertia x this (docs/modelling.md, light links under heavy loads): ~1.2 kN per chain on
+// 0.85 kg links.
 constexpr double kChainInertiaFactor = 200;
 
 // geometry [m]: the forklift faces +x
 constexpr double kFrontAxleX = 0.6, kRearAxleX = -0.8, kFrontRadius = 0.3, kRearRadius = 0.25;
 constexpr double kMastX = 1.05, kCarriageX = 1.13, kTineLength = 1.0, kTineY = 0.225;
+const Vec3 kMastFoot{kMastX, 0, 0.3};
+const Vec3 kTiltBase{0.55, 0.35, 0.95}, kTiltEnd{kMastX - 0.06, 0.35, 1.3};  // tilt cylinder ends (y: +-)
+// Tilt cylinder speed per mast angular speed [m/rad]: the cylinders shorten (about their lever of
+// 1 m about the mast foot) as the mast tilts back, which is a growing hinge angle.
+constexpr double kTiltLever = -1.0;
 constexpr double kTineZ = 0.06;  // tine centre height when lowered (pallet opening 0 .. 0.12)
 constexpr double kPalletX = kCarriageX + 0.05 + 0.5 * kTineLength;
 
 // the run [s, m/s, rad]
 constexpr double kLiftEnd = 2.0, kLiftSpeed = 0.15, kLiftForce = 2e4;
+constexpr double kTiltBack = 0.07, kTiltForce = 3e4;  // mast tilted back 4 deg after the lift
 constexpr double kDriveStart = 2.0, kDriveSpeed = 3.0, kAccel = 1.0, kDriveTorque = 1500;
 constexpr double kTurnStart = 6.0, kSteerAngle = 0.5;
 constexpr double kSteerTorque = 2000;
@@ -57,6 +71,7 @@ public:
 
     void build(SceneWorld& w) override {
         build_chassis(w);
+        build_mast(w);
         build_wheels(w);
         build_lift(w);
         build_load(w);
@@ -72,6 +87,9 @@ public:
         (void)w;
         track_heading();
         drive_slider(lift_, t < kLiftEnd ? kLiftSpeed * std::min(t / 0.3, 1.0) : 0.0, kLiftForce);
+        const double mast_target = t < kLiftEnd ? 0.0 : kTiltBack;
+        const double tilt_rate = servo_velocity(dJointGetHingeAngle(mast_hinge_), mast_target, 0.1);
+        for (dJointID j : tilt_) drive_slider(j, kTiltLever * tilt_rate, kTiltForce);
         if (t >= kTurnStart && !turning_ && !turned_) {
             turning_ = true;
             heading_at_turn_ = heading_;
@@ -100,7 +118,8 @@ public:
         std::ostringstream d;
         d << "turned " << (turning_ || turned_ ? turned_deg : 0.0) << " deg (needs 360), crate moved "
           << shift << " m on the fork (< 0.15), crate centre " << crate_height
-          << " m up (> 0.6), forklift tilt " << tilt_deg << " deg (< 20), joint gap "
+          << " m up (> 0.6), mast tilted back " << dJointGetHingeAngle(mast_hinge_) * 180 / kPi
+          << " deg, forklift tilt " << tilt_deg << " deg (< 20), joint gap "
           << w.max_joint_error() << " m (< 0.01), cone " << (cone_hit_ ? "hit" : "not hit");
         return {!cone_hit_ && turned_ && shift < 0.15 && crate_height > 0.6 && tilt_deg < 20 && w.max_joint_error() < 0.01,
                 d.str()};
@@ -112,10 +131,19 @@ private:
 
     void build_chassis(SceneWorld& w) {
         CompositeBody c;
-        c.box({2.0, 1.1, 0.7}, {0, 0, 0.55}, 0.55 * kChassisMass);           // frame and engine
-        c.box({0.5, 1.1, 0.7}, {-1.2, 0, 0.65}, 0.35 * kChassisMass);         // counterweight
-        c.box({0.12, 0.9, 2.2}, {kMastX, 0, 1.3}, 0.10 * kChassisMass);       // mast
+        c.box({2.0, 1.1, 0.7}, {0, 0, 0.55}, 0.6 * kChassisMass);            // frame and engine
+        c.box({0.5, 1.1, 0.7}, {-1.2, 0, 0.65}, 0.4 * kChassisMass);          // counterweight
         chassis_ = c.build(w, {0, 0, 0});
+    }
+
+    // The mast on a hinge at its foot, and a tilt cylinder on each side from the frame to the mast.
+    void build_mast(SceneWorld& w) {
+        mast_ = add_body(w, box_mass(kMastMass, {0.12, 0.9, 2.2}), {kMastX, 0, 1.3});
+        add_box(w, mast_, {0.12, 0.9, 2.2});
+        mast_hinge_ = add_hinge(w, chassis_, mast_, kMastFoot, {0, 1, 0});
+        for (int side : {-1, 1})
+            tilt_.push_back(add_hydraulic_cylinder(w, chassis_, {kTiltBase.x, side * kTiltBase.y, kTiltBase.z}, mast_,
+                                                   {kTiltEnd.x, side * kTiltEnd.y, kTiltEnd.z}, kTiltBarrelMass, kTiltRodMass));
     }
 
     void build_wheels(SceneWorld& w) {
@@ -147,7 +175,7 @@ private:
     void build_lift(SceneWorld& w) {
         const double carriage_top = 0.9, crosshead_z = 1.7;
         crosshead_ = add_body(w, box_mass(kCrossheadMass, {0.1, 0.8, 0.1}), {kCarriageX, 0, crosshead_z});
-        lift_ = add_slider(w, crosshead_, chassis_, {0, 0, 1});
+        lift_ = add_slider(w, crosshead_, mast_, {0, 0, 1});
 
         CompositeBody c;
         c.box({0.05, 1.0, carriage_top - 0.05}, {kCarriageX, 0, 0.5 * (carriage_top + 0.05)}, 0.7 * kCarriageMass);
@@ -156,7 +184,7 @@ private:
                   0.15 * kCarriageMass);
         }
         carriage_ = c.build(w, {0, 0, 0});
-        add_slider(w, carriage_, chassis_, {0, 0, 1});
+        add_slider(w, carriage_, mast_, {0, 0, 1});
 
         for (int side : {-1, 1}) {
             CableSpec chain;
@@ -194,8 +222,9 @@ private:
         last_raw_heading_ = raw;
     }
 
-    dBodyID chassis_ = nullptr, crosshead_ = nullptr, carriage_ = nullptr, pallet_ = nullptr, crate_ = nullptr;
-    dJointID lift_ = nullptr;
+    dBodyID chassis_ = nullptr, mast_ = nullptr, crosshead_ = nullptr, carriage_ = nullptr, pallet_ = nullptr, crate_ = nullptr;
+    dJointID lift_ = nullptr, mast_hinge_ = nullptr;
+    std::vector<dJointID> tilt_;
     std::vector<dJointID> drive_, steer_;
     Vec3 crate_on_carriage_;
     double heading_ = 0, last_raw_heading_ = 0, heading_at_turn_ = 0;

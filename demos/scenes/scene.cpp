@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "scenes/classic.h"
+#include "scenes/contact.h"
 #include "scenes/joint_gap.h"
 #include "scenes/paper_scenes.h"
 
@@ -154,6 +155,7 @@ std::vector<std::string> scene_names() {
     std::vector<std::string> names;
     for (const auto& [name, factory] : paper_scenes()) names.push_back(name);
     for (const auto& [name, factory] : classic_scenes()) names.push_back(name);
+    for (const auto& [name, factory] : contact_scenes()) names.push_back(name);
     return names;
 }
 
@@ -162,6 +164,9 @@ std::unique_ptr<Scene> make_scene(const std::string& name) {
         if (scene_name == name) return factory();
     }
     for (const auto& [scene_name, factory] : classic_scenes()) {
+        if (scene_name == name) return factory();
+    }
+    for (const auto& [scene_name, factory] : contact_scenes()) {
         if (scene_name == name) return factory();
     }
     return nullptr;

@@ -130,8 +130,8 @@ bool is_solver_registered(const std::string& name);
 /// The registered MLCP solver names.
 std::vector<std::string> registered_solvers();
 
-/// All scenes by name: the paper's six (crane, winch, parkour, offshore, forklift, forwarder)
-/// and ODE's classic demos, ported.
+/// All scenes by name: the paper's six (crane, winch, parkour, offshore, forklift, forwarder),
+/// ODE's classic demos, ported, and the contact-rich scenes (pyramid, stack, bin, rockpile).
 std::vector<std::string> scene_names();
 std::unique_ptr<Scene> make_scene(const std::string& name);  ///< nullptr for an unknown name
 

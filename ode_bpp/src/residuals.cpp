@@ -51,6 +51,13 @@ double row_scale(const Problem& p, Diagonal diag, const std::vector<double>& sca
     return s;
 }
 
+/// The bounds of row i in the fixed-bound problem x implies (Residuals::fixed_bound): +-|x_i| for a
+/// bounded friction row, `bounds` (its effective bounds) for any other row.
+std::pair<double, double> implied_bounds(const Problem& p, ConstStrided x, int i, std::pair<double, double> bounds) {
+    if (p.findex == nullptr || p.findex[i] < 0 || i < p.nub || is_unbounded_friction_row(p, i)) return bounds;
+    return {-std::abs(x[i]), std::abs(x[i])};
+}
+
 /// Residuals from w = A x - b and scale = |A||x| + |b|; diag(i) = A_ii.
 template <typename Diagonal>
 Residuals summarize(const Problem& p, Diagonal diag, ConstStrided x, const std::vector<double>& w,
@@ -61,11 +68,18 @@ Residuals summarize(const Problem& p, Diagonal diag, ConstStrided x, const std::
         r.natural = std::max(r.natural, std::abs(x[i] - clamp_to(x[i] - w[i], bounds)));
         const double scaled = std::abs(x[i] - clamp_to(x[i] - w[i] / diag(i), bounds));
         if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled / row_scale(p, diag, scale, i));
+        const auto implied = implied_bounds(p, x, i, bounds);
+        r.fixed_bound = std::max(r.fixed_bound, std::abs(x[i] - clamp_to(x[i] - w[i], implied)));
+        const double scaled_fixed = std::abs(x[i] - clamp_to(x[i] - w[i] / diag(i), implied));
+        if (scaled_fixed > 0)
+            r.scaled_fixed_bound = std::max(r.scaled_fixed_bound, scaled_fixed / row_scale(p, diag, scale, i));
         if (is_free(p, x, states, i)) r.free = std::max(r.free, std::abs(w[i]));
         if (p.findex != nullptr && p.findex[i] >= 0)
             r.friction = std::max(r.friction, std::abs(x[i]) - bounds.second);
     }
-    r.relative_natural = r.natural / std::max(1.0, inf_norm(p.b, p.n));
+    const double b_scale = std::max(1.0, inf_norm(p.b, p.n));
+    r.relative_natural = r.natural / b_scale;
+    r.fixed_bound /= b_scale;
     return r;
 }
 
@@ -99,8 +113,12 @@ void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double
 
 }  // namespace
 
+bool is_unbounded_friction_row(const Problem& p, int i) {
+    return i >= p.nub && p.findex != nullptr && p.findex[i] >= 0 && p.hi[i] == kInf;
+}
+
 std::pair<double, double> effective_bounds(const Problem& p, ConstStrided x, int i) {
-    if (i < p.nub) return {-kInf, kInf};
+    if (i < p.nub || is_unbounded_friction_row(p, i)) return {-kInf, kInf};
     if (p.findex != nullptr && p.findex[i] >= 0) {
         const double normal = x[p.findex[i]];
         const double bound = normal == 0 ? 0.0 : std::abs(p.hi[i] * normal);

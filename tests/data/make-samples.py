@@ -118,6 +118,21 @@ def box_contact():
                   num_bodies=1, meta=[("scene", "box-contact"), ("frame", "0"), ("island", "0")])
 
 
+def never_slipping():
+    """The friction example with mu = +inf (ODE's dInfinity, "never slips": lo = -mu, hi = mu):
+    legal input whose friction rows are unbounded (docs/maths.md, Infinite friction)."""
+    A = [[2.0, 0.3, 0.1], [0.3, 1.5, 0.2], [0.1, 0.2, 1.8]]
+    return encode(A, b=[1.0, 0.9, -0.2], lo=[0.0, -INF, -INF], hi=[INF, INF, INF], nub=0,
+                  findex=[-1, 0, 0], meta=[("scene", "never-slipping"), ("source", "docs/maths.md")])
+
+
+def negative_friction():
+    """Illegal: a friction coefficient mu = -inf (hi of a friction row); solve() must refuse it."""
+    A = [[2.0, 0.3, 0.1], [0.3, 1.5, 0.2], [0.1, 0.2, 1.8]]
+    return encode(A, b=[1.0, 0.9, -0.2], lo=[0.0, INF, -0.5], hi=[INF, -INF, 0.5], nub=0,
+                  findex=[-1, 0, 0], meta=[("scene", "negative-friction"), ("expect", "invalid-input")])
+
+
 def plain_two_rows():
     """No optional section at all."""
     return encode([[1.0, 0.5], [0.5, 2.0]], b=[1.0, -1.0], lo=[0.0, -1.0], hi=[INF, 1.0], nub=0)
@@ -131,6 +146,8 @@ SAMPLES = {
     "notes-friction-3.mlcp": notes_friction_example,
     "ball-chain-12.mlcp": ball_chain,
     "box-contact-13.mlcp": box_contact,
+    "never-slipping-3.mlcp": never_slipping,
+    "negative-friction-3.mlcp": negative_friction,
     "plain-2.mlcp": plain_two_rows,
     "empty-0.mlcp": empty_problem,
 }

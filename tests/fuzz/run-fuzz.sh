@@ -8,7 +8,7 @@
 #   flags      passed on to libFuzzer, e.g. -fork=1 -ignore_crashes=1 to go on after a crash
 #              (every crash is then saved, duplicates included)
 #
-# The seed corpus is every sample in tests/data plus the recorded regressions; the working
+# The seed corpus is every sample in tests/data and tests/data/captured plus the recorded regressions; the working
 # corpus lives in BUILD_DIR/fuzz-work and grows across runs. Every crash, leak, timeout or
 # out-of-memory input is copied to tests/data/fuzz-regressions/<target>-<kind>-<hash>, where
 # the unit test test_io_regressions and the fuzz replay tests run it from then on.
@@ -40,7 +40,7 @@ for target in fuzz_read_mlcp fuzz_solve; do
   artifacts=$work/$target/artifacts
   rm -rf "$artifacts"
   mkdir -p "$corpus" "$artifacts"
-  cp "$data"/*.mlcp "$corpus"/
+  cp "$data"/*.mlcp "$data"/captured/*.mlcp "$corpus"/
   find "$regressions" -maxdepth 1 -type f ! -name '*.md' -exec cp {} "$corpus"/ \;
 
   echo "[fuzz] $target for ${seconds}s (corpus: $(ls "$corpus" | wc -l) files)"

@@ -1,5 +1,7 @@
 #include "problems/named.h"
 
+#include "problems/generators.h"
+
 #include <limits>
 
 namespace ode_bpp::problems {
@@ -70,6 +72,18 @@ OwnedProblem block_pivoting_cycle() {
     p.b = {0, 2, 2};
     p.lo = {-0.75, -3.25, -1.5};
     p.hi = {0.75, 0.25, 0.5};
+    return p;
+}
+
+}  // namespace ode_bpp::problems
+
+namespace ode_bpp::problems {
+
+OwnedProblem never_slipping_chain() {
+    OwnedProblem p = chain_mlcp(6, 4, 100, 1e-10);
+    p.name = "never_slipping_chain";
+    for (int i = 0; i < p.n; ++i)
+        if (p.findex[i] >= 0) p.lo[i] = -kInf, p.hi[i] = kInf;  // ODE: lo = -mu, hi = mu
     return p;
 }
 

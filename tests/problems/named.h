@@ -26,4 +26,10 @@ OwnedProblem duplicated_rows();
 /// Rows: 0 normal, 1 its friction, 2 normal, 3 its friction.
 OwnedProblem opposed_friction_pair();
 
+/// mu = +inf, ODE's "never slips" (legal input, dContact::surface.mu = dInfinity): chain_mlcp(6, 4,
+/// 100, 1e-10) (27 rows: 5 ball joints and 4 ground contacts) with every friction coefficient
+/// infinite. Such friction rows are unbounded (docs/modelling.md). Before they were, Consistent
+/// friction linked x_f = +-inf x_n, skipped its Lemke stage and ended friction-not-consistent.
+OwnedProblem never_slipping_chain();
+
 }  // namespace ode_bpp::problems

@@ -1,5 +1,5 @@
-// Every input that once broke a fuzz target (tests/data/fuzz-regressions) and every sample
-// goes through the reader and, when it reads, through solve() with every method, exactly as
+// Every input that once broke a fuzz target (tests/data/fuzz-regressions), every sample and
+// every captured island (tests/data/captured) goes through the reader and, when it reads, through solve() with every method, exactly as
 // the fuzz targets do: nothing may crash, x stays finite, rejected input leaves x zero.
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> regression_inputs() {
     std::vector<std::string> names;
-    for (const fs::path& dir : {io_test::data_dir() / "fuzz-regressions", io_test::data_dir()}) {
+    for (const fs::path& dir : {io_test::data_dir() / "fuzz-regressions", io_test::data_dir(), io_test::data_dir() / "captured"}) {
         if (!fs::is_directory(dir)) continue;
         for (const auto& entry : fs::directory_iterator(dir)) {
             const fs::path& p = entry.path();

@@ -89,16 +89,48 @@ TEST(Residuals, StridedXGivesTheSameNumbers) {
     EXPECT_EQ(a.friction, b.friction);
 }
 
-TEST(Residuals, ZeroNormalWithInfiniteMuGivesZeroBoundNotNaN) {
+// mu = +inf is ODE's "never slips": the friction row is unbounded at any normal impulse, zero
+// included (docs/modelling.md), never bounded by a NaN from inf * 0.
+TEST(Residuals, InfiniteMuMakesTheFrictionRowUnbounded) {
     auto p = problems::dantzig_friction_3x3();
     p.hi[1] = kInf;
-    const std::vector<double> x = {0.0, 0.1, 0.0};
-    const auto bounds = effective_bounds(p, ConstStrided{x.data(), 1}, 1);
-    EXPECT_EQ(bounds.first, 0.0);
-    EXPECT_EQ(bounds.second, 0.0);
-    const Residuals r = compute_residuals(p, ConstStrided{x.data(), 1});
-    EXPECT_TRUE(std::isfinite(r.natural));
-    EXPECT_DOUBLE_EQ(r.friction, 0.1);
+    EXPECT_TRUE(is_unbounded_friction_row(p, 1));
+    EXPECT_FALSE(is_unbounded_friction_row(p, 0));
+    EXPECT_FALSE(is_unbounded_friction_row(problems::dantzig_friction_3x3(), 1));
+    for (const double normal : {0.0, 0.4}) {
+        const std::vector<double> x = {normal, 0.1, 0.0};
+        const auto bounds = effective_bounds(p, ConstStrided{x.data(), 1}, 1);
+        EXPECT_EQ(bounds.first, -kInf);
+        EXPECT_EQ(bounds.second, kInf);
+        const Residuals r = compute_residuals(p, ConstStrided{x.data(), 1});
+        EXPECT_TRUE(std::isfinite(r.natural));
+        EXPECT_EQ(r.friction, 0.0);
+    }
+}
+
+// The fixed-bound residual bounds each friction row by its own magnitude: a row at a bound with
+// a multiplier of the right sign passes, one of the wrong sign does not; other rows as natural.
+TEST(Residuals, FixedBoundResidualTakesEachFrictionBoundFromTheAnswer) {
+    const auto p = problems::dantzig_friction_3x3();  // rows: normal, its friction (mu 0.5), free
+    const Eigen::MatrixXd A = full_matrix(p);
+    const Eigen::Vector3d b(p.b[0], p.b[1], p.b[2]);
+    /// x with x1 given and rows 0 and 2 exact (w0 = w2 = 0)
+    auto answer_with = [&](double x1) {
+        Eigen::Matrix2d M;
+        M << A(0, 0), A(0, 2), A(2, 0), A(2, 2);
+        const Eigen::Vector2d rest = M.inverse() * Eigen::Vector2d(b[0] - A(0, 1) * x1, b[2] - A(2, 1) * x1);
+        return Eigen::Vector3d(rest[0], x1, rest[1]);
+    };
+    // w1 < 0 for both: right at the upper bound +0.3, wrong at the lower bound -0.3
+    const Eigen::Vector3d at_hi = answer_with(0.3), at_lo = answer_with(-0.3);
+    ASSERT_GT(at_hi[0], 0);
+    ASSERT_LT((A * at_hi - b)[1], 0);
+    ASSERT_LT((A * at_lo - b)[1], -0.6);
+    EXPECT_LT(compute_residuals(p, ConstStrided{at_hi.data(), 1}).fixed_bound, 1e-15);
+    // |x1 - clamp(x1 - w1, -0.3, 0.3)| = 0.6, over max(1, |b|) = 1
+    EXPECT_NEAR(compute_residuals(p, ConstStrided{at_lo.data(), 1}).fixed_bound, 0.6, 1e-15);
+    // the natural residual judges the same answers by mu x0 instead
+    EXPECT_GT(compute_residuals(p, ConstStrided{at_hi.data(), 1}).relative_natural, 0.05);
 }
 
 TEST(Residuals, FreeResidualUsesTheGivenIndexSet) {

@@ -27,16 +27,30 @@ struct Residuals {
     double free = 0;
     /// max over friction rows of max(0, |x_i| - mu_i |x_findex[i]|) (Result::friction_error).
     double friction = 0;
+    /// relative_natural of the fixed-bound problem the answer implies: each friction row with a
+    /// finite mu bounded by +-|x_i|, its own magnitude, instead of +-mu_i |x_findex[i]|. Frozen
+    /// friction and ODE's Dantzig fix friction bounds that the answer does not carry; whatever
+    /// they were, an exact answer of that fixed-bound problem has this residual at rounding level
+    /// (a friction row strictly inside its bounds has w_i = 0, one at a bound has w_i of the sign
+    /// that keeps it there), so a larger value refutes it. It cannot certify one: a row stopped
+    /// short of its bound passes (Result::fixed_bound_residual).
+    double fixed_bound = 0;
+    /// scaled_natural of the same fixed-bound problem (Result::scaled_fixed_bound_residual).
+    double scaled_fixed_bound = 0;
 };
 
-/// Row i's bounds at x: (-inf, +inf) for rows < nub; +-|mu_i x[findex[i]]| for a friction row
-/// (0 when the normal impulse is 0, as ODE's Dantzig does, so that mu = inf stays defined);
-/// (lo_i, hi_i) otherwise. x: n entries.
+/// Row i's bounds at x: (-inf, +inf) for rows < nub and for a friction row whose mu_i = hi_i is
+/// +inf (ODE's "never slips": such a row is unbounded whatever its normal, docs/modelling.md);
+/// +-|mu_i x[findex[i]]| for any other friction row (0 when the normal impulse is 0, as ODE's
+/// Dantzig does); (lo_i, hi_i) otherwise. x: n entries.
 std::pair<double, double> effective_bounds(const Problem& problem, ConstStrided x, int i);
 
 /// w = A x - b and scale = |A||x| + |b| (n entries each, outputs), with the full symmetric A read
 /// from its lower triangle. O(n^2).
 void residual_vectors(const Problem& problem, ConstStrided x, std::vector<double>& w, std::vector<double>& scale);
+
+/// True for a friction row whose coefficient mu_i = hi_i is +inf: an unbounded row (effective_bounds).
+bool is_unbounded_friction_row(const Problem& problem, int i);
 
 /// All of Residuals at x (n entries). states (n entries) defines the free set of the free
 /// residual; null means the rows strictly inside their effective bounds. The problem must have

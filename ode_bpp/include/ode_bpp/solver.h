@@ -85,8 +85,15 @@ const char* to_string(FrictionMode f);
 std::optional<FrictionMode> friction_from_string(std::string_view name);
 
 enum class Status {
-    Converged,       ///< the method's own iteration reached a certified answer
-    MaxIterations,   ///< the pivot budget ran out; x is the best iterate (or PGS's last sweep)
+    /// an answer within certification_level() of exact in the residual of its friction semantics
+    /// (the natural residuals for Consistent friction and PGS, the fixed-bound ones for Frozen
+    /// friction and ODE's Dantzig, whose frozen bounds the answer does not carry; of each pair the
+    /// smaller of the scaled and the relative one), and any answer whose natural residual is that
+    /// small, whatever its method said (solver.cpp, agree_with_residual)
+    Converged,
+    /// not certified: the pivot budget ran out (x is the best iterate), PGS's last sweep, or a
+    /// method that ended with a residual above the certification level (message says which)
+    MaxIterations,
     FallbackUsed,    ///< the answer came through a documented fallback (see Result::fallback)
     NotSpd,          ///< A is not positive definite, and regularization did not rescue it
     InvalidInput,    ///< validation failed (NaN/Inf, lo > hi, bad findex, bad sizes); x is zero
@@ -189,6 +196,12 @@ struct Result {
     /// the returned normal impulses, and the same divided by max(1, ||b||_inf).
     double natural_residual = 0;
     double relative_natural_residual = 0;
+    /// relative_natural_residual with each friction row bounded by +-|x_i| (the fixed-bound
+    /// problem the answer implies; ode_bpp/residuals.h, Residuals::fixed_bound): at rounding level
+    /// for any exact answer of Frozen friction or of ODE's Dantzig, whatever bounds they froze.
+    double fixed_bound_residual = 0;
+    /// scaled_natural_residual of the same fixed-bound problem (Residuals::scaled_fixed_bound).
+    double scaled_fixed_bound_residual = 0;
     /// ||A_FF x_F - (b_F - A_FT x_T)||_inf at the answer's index set.
     double free_residual = 0;
     /// max over friction rows of max(0, |x_i| - mu_i |x_findex[i]|).
@@ -208,6 +221,10 @@ struct Result {
     /// Fixed-bound solves that the rescue continuation finished (Options::rescue_after).
     int rescues = 0;
 };
+
+/// The residual at or below which an answer is certified (Status::Converged), for every method:
+/// 10 x the classification tolerance, at least 1e-14 (1e-8 by default).
+double certification_level(double tolerance);
 
 /// Solves the problem with the chosen method and writes x (n entries).
 /// Never throws on bad input and never writes non-finite values into x.

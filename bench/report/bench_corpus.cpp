@@ -24,7 +24,7 @@
 // method always runs first or right after another one. The median of the R times is reported.
 // The first N files are solved once more beforehand, untimed, to warm the process up.
 //
-// bpp's "limit" (--limit): bpp re-solved from its own final index set (Options::warm_start)
+// bpp's "limit" (--limit): bpp re-solved from its own final index set (Start::states)
 // with max_pivots = 1, i.e. the cost of factoring for the final A_FF plus one solve. It
 // approximates the time of a method that guessed the index set right at once; it includes the
 // ordering and the factorization of A before the rows of T are taken out, and every fixed cost
@@ -215,9 +215,9 @@ ode_bpp::Options options_for(const Variant& variant) {
 
 /// Wall time of one solve in microseconds; result and x receive the solve's answer.
 double timed_solve(const ode_bpp::Problem& problem, const ode_bpp::Options& options,
-                   std::vector<double>& x, ode_bpp::Result* result) {
+                   std::vector<double>& x, ode_bpp::Result* result, const ode_bpp::Start& from = {}) {
     const auto start = std::chrono::steady_clock::now();
-    *result = ode_bpp::solve(problem, options, x.data());
+    *result = ode_bpp::solve(problem, options, x.data(), from);
     const auto stop = std::chrono::steady_clock::now();
     return std::chrono::duration<double, std::micro>(stop - start).count();
 }
@@ -278,14 +278,15 @@ void measure_limit(const ode_bpp::MlcpFile& file, int repeat, Measurement& bpp) 
     ode_bpp::Options options;
     options.method = ode_bpp::Method::Bpp;
     options.record_steps = false;
-    options.warm_start = bpp.result.states;
+    ode_bpp::Start from;
+    from.states = bpp.result.states;
     options.max_pivots = 1;
     options.dantzig_fallback = false;
     std::vector<double> x(static_cast<std::size_t>(problem.n));
     std::vector<double> times;
     ode_bpp::Result result;
-    timed_solve(problem, options, x, &result);
-    for (int r = 0; r < repeat; ++r) times.push_back(timed_solve(problem, options, x, &result));
+    timed_solve(problem, options, x, &result, from);
+    for (int r = 0; r < repeat; ++r) times.push_back(timed_solve(problem, options, x, &result, from));
     bpp.limit_us = median(times);
     bpp.limit_status = ode_bpp::to_string(result.status);
     bpp.physical_limit_us = ode_bpp::bench::physical_limit_us(file, bpp.result.states, repeat);

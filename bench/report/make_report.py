@@ -754,7 +754,7 @@ def main():
              "does besides solving: for ode_bpp's methods the residuals solve() reports, for the peers their copies "
              "of A and the bounds into their own layout.\n",
              "bpp's *limit* is bpp re-solved from its own final index set with one pivot step "
-             "(Options::warm_start, max_pivots = 1): ordering + factoring A + taking T's rows out + one solve, "
+             "(Start::states, max_pivots = 1): ordering + factoring A + taking T's rows out + one solve, "
              "an upper bound of the ideal one Cholesky of A_FF plus one solve. Where that re-solve does not certify the "
              "set in its one step (status max-iterations, counted below), its time is that of the one-step budget, not of a certified answer.\n"]
     meta = os.path.join(out_dir, "meta.txt")

@@ -116,8 +116,9 @@ Result run_pgs(const Problem& p, const linalg::SymmetricRows& A, const Options& 
     return r;
 }
 
-Result dispatch(const Problem& p, const linalg::SymmetricRows& A, const Options& o, std::vector<double>& x) {
-    if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, x);
+Result dispatch(const Problem& p, const linalg::SymmetricRows& A, const Options& o, const Start& start,
+                std::vector<double>& x) {
+    if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, start, x);
     if (o.method == Method::Dantzig) return run_dantzig(p, A, x);
     return run_pgs(p, A, o, x);
 }
@@ -224,8 +225,9 @@ const linalg::SymmetricRows& rows_of(const Problem& problem) {
 
 /// The small-island path (pivoting/small_island.h); true when it answered, with r complete and
 /// x written. answer: scratch, n entries.
-bool solve_small(const Problem& problem, const Options& options, std::vector<double>& answer, Result& r, Strided x) {
-    if (!pivoting::solve_small_island(problem, options, answer, r)) return false;
+bool solve_small(const Problem& problem, const Options& options, const Start& start, std::vector<double>& answer,
+                 Result& r, Strided x) {
+    if (!pivoting::solve_small_island(problem, options, start, answer, r)) return false;
     r.method = options.method;
     r.friction = options.friction;
     store_residuals(compute_residuals(problem, ConstStrided{answer.data(), 1}, &r.states), r);
@@ -234,9 +236,9 @@ bool solve_small(const Problem& problem, const Options& options, std::vector<dou
     return true;
 }
 
-ValidationResult validate_call(const Problem& problem, const Options& options) {
+ValidationResult validate_call(const Problem& problem, const Options& options, const Start& start) {
     ValidationResult v = validate_structure(problem);
-    if (v.valid) v = validate_warm_start(problem, options.warm_start);
+    if (v.valid) v = validate_warm_start(problem, start.states);
     if (v.valid && !(options.tolerance >= 0 && std::isfinite(options.tolerance)))
         v = {false, "tolerance must be finite and >= 0"};
     return v;
@@ -315,14 +317,14 @@ bool is_usable(Status s) {
 
 double certification_level(double tolerance) { return std::max(kCertificationFactor * tolerance, kCertificationFloor); }
 
-Result solve(const Problem& caller_problem, const Options& options, Strided x) {
+Result solve(const Problem& caller_problem, const Options& options, Strided x, const Start& start) {
     if (x.data == nullptr || x.stride < 1) {
         Result r = invalid_input(caller_problem, x, "x is null or has a stride < 1");
         r.method = options.method;
         r.friction = options.friction;
         return r;
     }
-    ValidationResult v = validate_call(caller_problem, options);
+    ValidationResult v = validate_call(caller_problem, options, start);
     const Problem problem = v.valid && has_unbounded_friction(caller_problem)
                                 ? thread_unbounded_friction().view(caller_problem)
                                 : caller_problem;
@@ -338,9 +340,9 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x) {
     }
     std::vector<double> answer;
     Result small_attempt;
-    if (small && solve_small(problem, options, answer, small_attempt, x)) return small_attempt;
+    if (small && solve_small(problem, options, start, answer, small_attempt, x)) return small_attempt;
     if (A == nullptr) A = &rows_of(problem);
-    Result r = dispatch(problem, *A, options, answer);
+    Result r = dispatch(problem, *A, options, start, answer);
     r.method = options.method;
     r.friction = options.friction;
     r.pivots += small_attempt.pivots;  // the steps of a small-island attempt that did not finish
@@ -353,6 +355,8 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x) {
     return r;
 }
 
-Result solve(const Problem& problem, const Options& options, double* x) { return solve(problem, options, Strided{x, 1}); }
+Result solve(const Problem& problem, const Options& options, double* x, const Start& start) {
+    return solve(problem, options, Strided{x, 1}, start);
+}
 
 }  // namespace ode_bpp

@@ -17,7 +17,7 @@ void check_solve(const ode_bpp::Problem& problem, ode_bpp::Method method, ode_bp
     options.friction = friction;
     options.max_pivots = 12;
     options.pgs_iterations = 8;
-    options.max_friction_rounds = 4;
+    options.tuning.max_friction_rounds = 4;
     std::vector<double> x(static_cast<std::size_t>(problem.n) + 1, 0.0);
     const ode_bpp::Result r = ode_bpp::solve(problem, options, x.data());
     for (int i = 0; i < problem.n; ++i) fuzz::require(std::isfinite(x[i]));

@@ -5,10 +5,10 @@
 // the forklift (wheels, forks and pallet on the ground). The counts are the hook's own
 // (hook_counters: islands, and islands with Status::Converged), cross-checked against ODE's
 // statistics (dWorldGetMLCPStats: islands, and failures handed to ODE's Dantzig).
-// Before the rescue continuation (Options::rescue_after) bpp converged on 71 % of the winch's
+// Before the rescue continuation (Tuning::rescue_after) bpp converged on 71 % of the winch's
 // frames at CFM 1e-10 and on 96 % at compliance 1e-8; the forklift failed on 3 % of its first 10 s.
 // Consistent friction (issue 3, item 3: >= 99 % at the paper's compliance) on the winch at its
-// stiffest compliance, 1e-10: 97.8 % before the Lemke stage (Options::lemke_friction), 100 % with it.
+// stiffest compliance, 1e-10: 97.8 % before the Lemke stage (Tuning::lemke_friction), 100 % with it.
 #include <gtest/gtest.h>
 #include <ode/mlcp.h>
 

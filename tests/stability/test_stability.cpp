@@ -132,8 +132,8 @@ RunSpec cycling_run(int murty_after, double ratio, double cfm) {
     RunSpec spec = paper_run(SweepPattern::SlidingPair, ratio, 0, "bpp");
     spec.cfm = cfm;
     spec.seconds = 3;
-    spec.options.murty_after = murty_after;
-    spec.options.rescue_after = 0;
+    spec.options.tuning.murty_after = murty_after;
+    spec.options.tuning.rescue_after = 0;
     return spec;
 }
 

@@ -46,7 +46,7 @@ void expect_solve_is_safe(const ode_bpp::MlcpFile& file, ode_bpp::Method method,
     options.friction = friction;
     options.max_pivots = 12;
     options.pgs_iterations = 8;
-    options.max_friction_rounds = 4;
+    options.tuning.max_friction_rounds = 4;
     std::vector<double> x(static_cast<std::size_t>(file.n) + 1, 0.0);
     const ode_bpp::Result r = ode_bpp::solve(file.view(), options, x.data());
     SCOPED_TRACE(std::string(to_string(method)) + "/" + to_string(friction) + ": " + to_string(r.status));

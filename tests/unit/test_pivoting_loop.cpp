@@ -23,10 +23,10 @@ using problems::max_abs_diff;
 
 const Method kBppMethods[] = {Method::BppChol, Method::BppDown, Method::BppSky, Method::Bpp};
 
-Result run(const problems::OwnedProblem& p, Method m, std::vector<double>& x, Options o = {}) {
+Result run(const problems::OwnedProblem& p, Method m, std::vector<double>& x, Options o = {}, const Start& start = {}) {
     o.method = m;
     x.assign(p.n, 0.0);
-    return solve(p, o, x.data());
+    return solve(p, o, x.data(), start);
 }
 
 class PivotingEnumeration : public ::testing::TestWithParam<Method> {};
@@ -70,10 +70,10 @@ TEST_P(PivotingEnumeration, WarmStartFromTheAnswerNeedsOnePivot) {
     const Result first = run(p, GetParam(), x);
     ASSERT_EQ(first.status, Status::Converged);
     ASSERT_GT(first.pivots, 1);
-    Options o;
-    o.warm_start = first.states;
+    Start start;
+    start.states = first.states;
     std::vector<double> x2;
-    const Result second = run(p, GetParam(), x2, o);
+    const Result second = run(p, GetParam(), x2, {}, start);
     EXPECT_EQ(second.status, Status::Converged);
     EXPECT_EQ(second.pivots, 1);
     EXPECT_LT(max_abs_diff(x, x2), 1e-12 * (1 + inf_norm(x)));
@@ -88,8 +88,8 @@ INSTANTIATE_TEST_SUITE_P(AllStrategies, PivotingEnumeration, ::testing::ValuesIn
 TEST(PivotingMurty, PureBlockPivotingCyclesOnTheNamedProblem) {
     const auto p = problems::block_pivoting_cycle();
     Options o;
-    o.murty_after = 1 << 30;
-    o.rescue_after = 0;  // no regularization rescue either: block steps alone
+    o.tuning.murty_after = 1 << 30;
+    o.tuning.rescue_after = 0;  // no regularization rescue either: block steps alone
     o.max_pivots = 200;
     std::vector<double> x;
     const Result r = run(p, Method::BppChol, x, o);
@@ -107,8 +107,8 @@ TEST(PivotingMurty, SafeguardEngagesAndConvergesToTheEnumeratedAnswer) {
     for (Method m : kBppMethods)
         for (int murty_after : {0, 1, 3, 10}) {
             Options o;
-            o.murty_after = murty_after;
-            o.rescue_after = 0;  // the safeguard alone, without the regularization rescue
+            o.tuning.murty_after = murty_after;
+            o.tuning.rescue_after = 0;  // the safeguard alone, without the regularization rescue
             std::vector<double> x;
             const Result r = run(p, m, x, o);
             ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " murty_after " << murty_after;
@@ -145,10 +145,10 @@ TEST(PivotingLoop, PinnedRowsStayAtTheirValueAndRowsWithInfiniteBoundsStayFree) 
     const auto expected = problems::enumerate_boxed_lcp(p, p.lo, p.hi);
     ASSERT_TRUE(expected.has_value());
     for (Method m : kBppMethods) {
-        Options o;
-        o.warm_start.assign(p.n, RowState::AtHi);  // impossible for row 5: must start free
+        Start start;
+        start.states.assign(p.n, RowState::AtHi);  // impossible for row 5: must start free
         std::vector<double> x;
-        const Result r = run(p, m, x, o);
+        const Result r = run(p, m, x, {}, start);
         ASSERT_EQ(r.status, Status::Converged) << to_string(m);
         EXPECT_EQ(x[3], 0.0);
         EXPECT_EQ(r.states[5], RowState::Free);
@@ -245,9 +245,9 @@ TEST_P(PivotingEnumeration, AWarmStartWithOpposedFrictionAtItsBoundsEndsWithTheC
     std::vector<double> cold, warm;
     const Result c = run(owned, GetParam(), cold);
     ASSERT_EQ(c.status, Status::Converged) << c.message;
-    Options o;
-    o.warm_start = {RowState::Free, RowState::AtHi, RowState::Free, RowState::AtLo};
-    const Result r = run(owned, GetParam(), warm, o);
+    Start start;
+    start.states = {RowState::Free, RowState::AtHi, RowState::Free, RowState::AtLo};
+    const Result r = run(owned, GetParam(), warm, {}, start);
     ASSERT_EQ(r.status, Status::Converged) << r.message;
     const double bound = 0.5 * cold[0];  // mu x_normal
     ASSERT_GT(bound, 0.01);

@@ -1,5 +1,5 @@
 // The small-island path of Method::Bpp (pivoting/small_island.h): the same answers as the general
-// driver (Options::dense_island_rows = 0 sends every island there), the same certificate and
+// driver (Tuning::dense_island_rows = 0 sends every island there), the same certificate and
 // polish, and the general driver taking over whatever the path cannot finish.
 #include <gtest/gtest.h>
 
@@ -20,15 +20,15 @@ namespace {
 using problems::inf_norm;
 using problems::max_abs_diff;
 
-Result run(const problems::OwnedProblem& p, std::vector<double>& x, Options o = {}) {
+Result run(const problems::OwnedProblem& p, std::vector<double>& x, Options o = {}, const Start& start = {}) {
     o.method = Method::Bpp;
     x.assign(p.n, std::numeric_limits<double>::quiet_NaN());
-    return solve(p, o, x.data());
+    return solve(p, o, x.data(), start);
 }
 
 /// The general driver's answer to the same problem.
 Result run_general(const problems::OwnedProblem& p, std::vector<double>& x, Options o = {}) {
-    o.dense_island_rows = 0;
+    o.tuning.dense_island_rows = 0;
     return run(p, x, o);
 }
 
@@ -36,7 +36,7 @@ TEST(SmallIsland, TakesOnlyFrozenBppIslandsInTheDenseFormUpToTheThreshold) {
     const auto p = problems::random_boxed_mlcp(12, 2, 2, 1e4, 7);
     Options o;
     EXPECT_TRUE(pivoting::takes_small_island(p.view(), o));
-    o.dense_island_rows = 11;
+    o.tuning.dense_island_rows = 11;
     EXPECT_FALSE(pivoting::takes_small_island(p.view(), o));
     o = {};
     o.friction = FrictionMode::Consistent;
@@ -86,10 +86,10 @@ TEST(SmallIsland, KeepsTheGeneralDriversFrictionSemanticsAndPolish) {
         EXPECT_LT(max_abs_diff(small, general), 1e-8 * (1 + inf_norm(general))) << p.name;
     }
     const auto p = problems::opposed_friction_pair();
-    Options o;
-    o.warm_start = {RowState::Free, RowState::AtHi, RowState::Free, RowState::AtLo};
+    Start start;
+    start.states = {RowState::Free, RowState::AtHi, RowState::Free, RowState::AtLo};
     std::vector<double> x;
-    const Result r = run(p, x, o);
+    const Result r = run(p, x, {}, start);
     ASSERT_EQ(r.status, Status::Converged);
     EXPECT_EQ(r.states[1], RowState::Free);
     EXPECT_EQ(r.states[3], RowState::Free);

@@ -83,7 +83,7 @@ TEST(SolverFriction, ConsistentModeKeepsEveryFrictionRowInsideItsCone) {
         const auto p = problems::random_boxed_mlcp(30, 3, 6, 1e4, seed);
         for (Method m : kBppMethods) {
             Options o;
-            o.max_friction_rounds = 200;
+            o.tuning.max_friction_rounds = 200;
             std::vector<double> x;
             const Result r = run(p, m, FrictionMode::Consistent, x, o);
             ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " seed " << seed << ": " << r.message;
@@ -98,8 +98,8 @@ TEST(SolverFriction, ConsistentModeKeepsEveryFrictionRowInsideItsCone) {
 TEST(SolverFriction, ConsistentModeReportsWhenItsRoundsRunOut) {
     const auto p = problems::random_boxed_mlcp(30, 3, 6, 1e4, 2);
     Options o;
-    o.link_friction = false;  // the outer rounds alone
-    o.max_friction_rounds = 1;
+    o.tuning.link_friction = false;  // the outer rounds alone
+    o.tuning.max_friction_rounds = 1;
     std::vector<double> x;
     const Result r = run(p, Method::Bpp, FrictionMode::Consistent, x, o);
     EXPECT_EQ(r.status, Status::FrictionNotConsistent);
@@ -118,7 +118,7 @@ TEST(SolverFriction, CapstanNeedsTheLinkedSolve) {
     const auto p = problems::capstan_mlcp(30, 9.0, 1.0, 1000, 1e-10);
     std::vector<double> x;
     Options outer_only;
-    outer_only.link_friction = false;
+    outer_only.tuning.link_friction = false;
     const Result damped = run(p, Method::Bpp, FrictionMode::Consistent, x, outer_only);
     EXPECT_EQ(damped.status, Status::FrictionNotConsistent);
     const Result r = run(p, Method::Bpp, FrictionMode::Consistent, x);
@@ -140,11 +140,11 @@ TEST(SolverFriction, LemkeStageFinishesWhereTheLinkedSolveRunsOut) {
     for (Method m : kBppMethods) {
         Options o;
         o.max_pivots = 3;
-        o.lemke_friction = false;
+        o.tuning.lemke_friction = false;
         std::vector<double> x;
         const Result without = run(p, m, FrictionMode::Consistent, x, o);
         EXPECT_NE(without.status, Status::Converged) << to_string(m);
-        o.lemke_friction = true;
+        o.tuning.lemke_friction = true;
         const Result r = run(p, m, FrictionMode::Consistent, x, o);
         ASSERT_EQ(r.status, Status::Converged) << to_string(m) << ": " << r.message;
         EXPECT_GT(r.lemke_pivots, 0) << to_string(m);

@@ -21,10 +21,10 @@ using problems::max_abs_diff;
 
 const Method kBppMethods[] = {Method::BppChol, Method::BppDown, Method::BppSky, Method::Bpp};
 
-Result run(const problems::OwnedProblem& p, Method m, std::vector<double>& x, Options o = {}) {
+Result run(const problems::OwnedProblem& p, Method m, std::vector<double>& x, Options o = {}, const Start& start = {}) {
     o.method = m;
     x.assign(p.n, std::numeric_limits<double>::quiet_NaN());
-    return solve(p, o, x.data());
+    return solve(p, o, x.data(), start);
 }
 
 bool all_finite(const std::vector<double>& x) {
@@ -80,7 +80,7 @@ TEST(SolverAgreement, ChainIslandWithStructureMatchesDantzig) {
     }
 }
 
-/// Options::order_tight_last off: a warm start no longer changes the ordering (Cuthill-McKee or
+/// Tuning::order_tight_last off: a warm start no longer changes the ordering (Cuthill-McKee or
 /// its reverse only); on, the ordering may differ but the answer does not.
 TEST(SolverOrdering, TightLastCanBeTurnedOff) {
     const auto p = problems::chain_mlcp(30, 12, 100, 1e-6);
@@ -89,17 +89,18 @@ TEST(SolverOrdering, TightLastCanBeTurnedOff) {
     ASSERT_EQ(cold.status, Status::Converged);
     ASSERT_GT(cold.tight, 0);
     Options o;
-    o.warm_start = cold.states;
-    o.order_tight_last = false;
-    const Result plain = run(p, Method::Bpp, plain_x, o);
+    Start start;
+    start.states = cold.states;
+    o.tuning.order_tight_last = false;
+    const Result plain = run(p, Method::Bpp, plain_x, o, start);
     EXPECT_EQ(plain.ordering, cold.ordering);
-    o.order_tight_last = true;
-    const Result warm = run(p, Method::Bpp, warm_x, o);
+    o.tuning.order_tight_last = true;
+    const Result warm = run(p, Method::Bpp, warm_x, o, start);
     ASSERT_EQ(warm.status, Status::Converged);
     EXPECT_LT(max_abs_diff(warm_x, cold_x), 1e-9 * inf_norm(cold_x));
 }
 
-/// Bpp refactors small islands densely (Options::dense_island_rows); with the threshold at 0 the
+/// Bpp refactors small islands densely (Tuning::dense_island_rows); with the threshold at 0 the
 /// same islands go through the skyline strategy, and both answers pass the same certificate.
 TEST(SolverSmallIslands, DenseAndSkylinePathsOfBppAgree) {
     for (int n : {6, 20, 32}) {
@@ -107,7 +108,7 @@ TEST(SolverSmallIslands, DenseAndSkylinePathsOfBppAgree) {
         std::vector<double> dense, skyline;
         const Result a = run(p, Method::Bpp, dense);
         Options o;
-        o.dense_island_rows = 0;
+        o.tuning.dense_island_rows = 0;
         const Result b = run(p, Method::Bpp, skyline, o);
         ASSERT_EQ(a.status, Status::Converged) << n;
         ASSERT_EQ(b.status, Status::Converged) << n;
@@ -126,15 +127,15 @@ TEST(SolverOrdering, GivenOrderingIsUsedAndInvalidOnesAreRecomputed) {
         const Result first = run(p, m, computed);
         ASSERT_EQ(first.status, Status::Converged);
         ASSERT_EQ(static_cast<int>(first.ordering.size()), p.n);
-        Options o;
-        o.ordering = first.ordering;
-        std::reverse(o.ordering.begin(), o.ordering.end());  // valid, but not what it would choose
-        const Result again = run(p, m, given, o);
+        Start start;
+        start.ordering = first.ordering;
+        std::reverse(start.ordering.begin(), start.ordering.end());  // valid, but not what it would choose
+        const Result again = run(p, m, given, {}, start);
         ASSERT_EQ(again.status, Status::Converged) << to_string(m);
-        EXPECT_EQ(again.ordering, o.ordering) << to_string(m);
+        EXPECT_EQ(again.ordering, start.ordering) << to_string(m);
         EXPECT_LT(max_abs_diff(given, computed), 1e-9 * inf_norm(computed)) << to_string(m);
-        o.ordering.assign(p.n, 0);  // not a permutation
-        const Result recomputed = run(p, m, given, o);
+        start.ordering.assign(p.n, 0);  // not a permutation
+        const Result recomputed = run(p, m, given, {}, start);
         EXPECT_EQ(recomputed.ordering, first.ordering) << to_string(m);
     }
 }
@@ -149,7 +150,7 @@ TEST(SolverCertificate, NaturalResidualCertifiesAnswersFromCond1e2To1e14) {
             Options o;
             o.friction = FrictionMode::Consistent;
             o.max_pivots = 3000;
-            o.max_friction_rounds = 200;
+            o.tuning.max_friction_rounds = 200;
             std::vector<double> x;
             const Result r = run(p, Method::Bpp, x, o);
             ++total;
@@ -219,9 +220,9 @@ TEST(SolverWarmStart, WarmStartOfAPerturbedProblemConvergesFasterToTheSameAnswer
         for (double& b : p.b) b *= 1.01;  // the next time step, roughly
         std::vector<double> x_cold, x_warm;
         const Result again = run(p, m, x_cold);
-        Options o;
-        o.warm_start = cold.states;
-        const Result warm = run(p, m, x_warm, o);
+        Start start;
+        start.states = cold.states;
+        const Result warm = run(p, m, x_warm, {}, start);
         ASSERT_EQ(warm.status, Status::Converged);
         EXPECT_LE(warm.pivots, again.pivots) << to_string(m);
         EXPECT_LT(max_abs_diff(x_warm, x_cold), 1e-9 * inf_norm(x_cold)) << to_string(m);
@@ -233,7 +234,7 @@ TEST(SolverContinuation, StagesReachTheSameAnswer) {
     std::vector<double> x0, x1;
     const Result plain = run(p, Method::Bpp, x0);
     Options o;
-    o.continuation_stages = 4;
+    o.tuning.continuation_stages = 4;
     const Result staged = run(p, Method::Bpp, x1, o);
     ASSERT_TRUE(plain.status == Status::Converged || plain.status == Status::FallbackUsed) << plain.message;
     ASSERT_EQ(staged.status, plain.status) << staged.message;

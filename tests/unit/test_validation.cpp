@@ -168,10 +168,10 @@ TEST(Validation, BadBlockStructure) {
 
 TEST(Validation, WarmStartOfWrongSizeIsInvalidInput) {
     auto p = good_problem();
-    Options o;
-    o.warm_start.assign(3, RowState::Free);
+    Start start;
+    start.states.assign(3, RowState::Free);
     std::vector<double> x(p.n, 5.0);
-    const Result r = solve(p, o, x.data());
+    const Result r = solve(p, Options{}, x.data(), start);
     EXPECT_EQ(r.status, Status::InvalidInput);
     for (double v : x) EXPECT_EQ(v, 0.0);
 }

@@ -116,23 +116,16 @@ const char* to_string(Fallback f);
 /// Per-row state of an index set: the paper's F, T_lo and T_hi.
 enum class RowState : std::int8_t { Free = 0, AtLo = 1, AtHi = 2 };
 
-/// Settings of one solve. The tuned defaults and the measurements behind them: docs/tuning.md.
-struct Options {
-    Method method = Method::Bpp;
-    FrictionMode friction = FrictionMode::Frozen;
-    /// Pivot-step budget per fixed-bound solve (Frozen friction makes two, Consistent one per
-    /// round). The paper used 35.
-    int max_pivots = 100;
+/// The algorithm's tuned internals. The defaults were measured on the paper's scenes inside ODE
+/// (docs/tuning.md, with what the alternatives gave); a user rarely needs to change them.
+struct Tuning {
     /// Block steps without a fall in the number of infeasible rows before Murty's single pivot.
     int murty_after = 3;
     /// Steps of the plain attempt of a fixed-bound solve. If it has not converged by then, the
-    /// solve starts again from its warm start through a regularization continuation (A + delta I,
+    /// solve starts again from its start through a regularization continuation (A + delta I,
     /// delta falling adaptively from 1e-4 max_i A_ii to the problem's own, pivoting/regularization.h),
     /// with the rest of the budget; if that gives up, the plain attempt resumes. 0: no rescue.
     int rescue_after = 8;
-    /// Relative tolerance: a row is infeasible when it breaks its bound by more than
-    /// tol * (|A||x| + |b|)_i (scaled per row, never an absolute constant).
-    double tolerance = 1e-9;
     /// Consistent friction: most outer bound updates, damped (new = (1-d)*old + d*target).
     int max_friction_rounds = 100;
     double friction_damping = 0.6;
@@ -146,31 +139,49 @@ struct Options {
     /// certifies. False: outer damped rounds as the last resort.
     bool lemke_friction = true;
     /// An up-front regularization continuation: solve with A + delta I, delta falling
-    /// geometrically over this many stages, each warm-started from the last. 0 disables it.
+    /// geometrically over this many stages, each from the last. 0 disables it.
     int continuation_stages = 0;
     /// Bpp: islands of at most this many rows take the small-island path (pivoting/small_island.h)
     /// in Frozen mode, or refactor densely at every step in the caller's order otherwise: there
     /// the skyline's set-up (ordering, shape, cost model, L0 and its copy) costs more than a dense
     /// Cholesky of the whole island. 0: always the skyline.
     int dense_island_rows = 32;
+    /// Bpp with a start: also consider orderings with the start's tight rows last (deleting them
+    /// then touches few columns), priced by the cost model against the envelope they may widen
+    /// (ordering/ordering_choice.h). False: Cuthill-McKee or its reverse only.
+    bool order_tight_last = true;
+};
+
+/// Settings of one solve.
+struct Options {
+    Method method = Method::Bpp;
+    FrictionMode friction = FrictionMode::Frozen;
+    /// Pivot-step budget per fixed-bound solve (Frozen friction makes two, Consistent one per
+    /// round). The paper used 35.
+    int max_pivots = 100;
+    /// Relative tolerance: a row is infeasible when it breaks its bound by more than
+    /// tol * (|A||x| + |b|)_i (scaled per row, never an absolute constant).
+    double tolerance = 1e-9;
     /// Projected Gauss-Seidel sweeps (Method::Pgs only).
     int pgs_iterations = 35;
-    /// Warm start: initial index set in original row order (n entries), or empty for all free.
-    std::vector<RowState> warm_start;
-    /// Bpp with a warm start: also consider orderings with the warm start's tight rows last
-    /// (deleting them then touches few columns), priced by the cost model against the envelope
-    /// they may widen (ordering/ordering_choice.h). False: Cuthill-McKee or its reverse only.
-    bool order_tight_last = true;
-    /// Bpp and BppSky: the symmetric row permutation to factor in (perm[new] = old, n entries),
-    /// e.g. Result::ordering of the same island's previous step, skipping the ordering; empty, or
-    /// not a permutation of 0..n-1: computed afresh.
-    std::vector<int> ordering;
+    /// On failure of the method, finish with ODE's Dantzig if it is available.
+    bool dantzig_fallback = true;
     /// Compute Table 4's ||L_deleted - chol(A_FF)||_F at the final index set (costly).
     bool compute_factor_error = false;
     /// Record |T| at every pivot step in Result::tight_per_step.
     bool record_steps = true;
-    /// On failure of the method, finish with ODE's Dantzig if it is available.
-    bool dantzig_fallback = true;
+    Tuning tuning;
+};
+
+/// Where a solve starts: what an earlier solve of the same island left behind (the world hook
+/// keeps both per island, matched by row identity and by joint structure). Original row order.
+struct Start {
+    /// Initial index set (n entries), or empty for all rows free.
+    std::vector<RowState> states;
+    /// Bpp and BppSky: the symmetric row permutation to factor in (perm[new] = old, n entries),
+    /// e.g. Result::ordering of the same island's previous step, skipping the ordering; empty, or
+    /// not a permutation of 0..n-1: computed afresh.
+    std::vector<int> ordering;
 };
 
 struct Result {
@@ -183,7 +194,7 @@ struct Result {
     int downdate_steps = 0;       ///< steps whose L_FF came from copying L and deleting rows
     int refactor_steps = 0;       ///< steps whose L_FF came from a (partial) refactorization
     int friction_rounds = 0;      ///< outer bound updates (consistent mode)
-    /// Consistent mode: the linked solve (Options::link_friction) ran; friction_rounds counts
+    /// Consistent mode: the linked solve (Tuning::link_friction) ran; friction_rounds counts
     /// the outer rounds after it (0 when it alone converged).
     bool linked_friction = false;
     /// Consistent mode: complementary pivots of the Lemke stage, which runs only where the linked
@@ -218,7 +229,7 @@ struct Result {
     int accuracy_refactors = 0;
     /// delta of the A + delta*I the answer solves (0 unless the fallback was Regularized).
     double regularization = 0;
-    /// Fixed-bound solves that the rescue continuation finished (Options::rescue_after).
+    /// Fixed-bound solves that the rescue continuation finished (Tuning::rescue_after).
     int rescues = 0;
 };
 
@@ -226,11 +237,11 @@ struct Result {
 /// 10 x the classification tolerance, at least 1e-14 (1e-8 by default).
 double certification_level(double tolerance);
 
-/// Solves the problem with the chosen method and writes x (n entries).
+/// Solves the problem with the chosen method from `start` and writes x (n entries).
 /// Never throws on bad input and never writes non-finite values into x.
-Result solve(const Problem& problem, const Options& options, Strided x);
+Result solve(const Problem& problem, const Options& options, Strided x, const Start& start = {});
 
 /// Convenience overload for contiguous x.
-Result solve(const Problem& problem, const Options& options, double* x);
+Result solve(const Problem& problem, const Options& options, double* x, const Start& start = {});
 
 }  // namespace ode_bpp

@@ -1,6 +1,6 @@
 // Dense Cholesky of a small symmetric matrix in place (paper Alg. 1 line 5: L_FF <- chol(A_FF)),
 // and the two triangular solves of Eq. 6. For the small islands that bpp factors densely
-// (Options::dense_island_rows), where a general-purpose factorization's set-up per call costs
+// (Tuning::dense_island_rows), where a general-purpose factorization's set-up per call costs
 // more than the O(n^3 / 6) flops themselves.
 #pragma once
 

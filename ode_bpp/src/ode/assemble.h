@@ -26,7 +26,7 @@ void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out);
 
 /// The same entries, summed the same way, into a dense lower triangle: A[i * lda + j] for j <= i
 /// (output; the strict upper triangle is not written), lda >= island.m. O(m^2) to clear it, then
-/// O(entries): for small islands (Options::dense_island_rows), whose solve reads A densely.
+/// O(entries): for small islands (Tuning::dense_island_rows), whose solve reads A densely.
 void assemble_dense_lower(const dMLCP& island, double* A, int lda);
 
 }  // namespace ode_bpp::ode

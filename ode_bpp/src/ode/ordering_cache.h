@@ -1,6 +1,6 @@
 // The row orderings of a world's islands, kept from step to step: an island whose constraint
 // structure (rows per joint, bodies per joint) has not changed factors in the same permutation,
-// so the hook passes it back (Options::ordering) instead of numbering the graph again.
+// so the hook passes it back (Start::ordering) instead of numbering the graph again.
 // An island is known by the identity of its first row as well as by its structure: identical
 // islands (a row of equal stacks) may order their rows differently (likely-tight rows last),
 // and sharing one entry would make each island's ordering depend on which finished last.

@@ -108,23 +108,26 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     const bool known_rows = problem->joints != nullptr && !keys.empty();
     const bool use_memory = known_rows && has_bounded_rows(*problem);
 
-    thread_local Options options;  // its vectors keep their capacity from island to island
+    thread_local Start start;  // its vectors keep their capacity from island to island
+    Options options;
     bool warm = false;
     {
         std::lock_guard<std::mutex> g(hook().lock);
         WorldState& ws = hook().worlds[problem->world];
         options = ws.settings.options;
-        if (ws.settings.warm_start && use_memory) warm = ws.memory.recall(keys, problem->step, options.warm_start);
+        if (ws.settings.warm_start && use_memory) warm = ws.memory.recall(keys, problem->step, start.states);
         if (known_rows) {
-            if (const std::vector<int>* known = ws.orderings.find(structure)) options.ordering = *known;
+            if (const std::vector<int>* known = ws.orderings.find(structure)) start.ordering = *known;
+            else start.ordering.clear();
         }
     }
     options.method = method;
-    if (!warm) options.warm_start.clear();
+    if (!warm) start.states.clear();
+    if (!known_rows) start.ordering.clear();
     const Problem q = view.of(*problem, pivoting::is_small_island(problem->m, options));
 
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
-    Result r = solve(q, options, Strided{problem->pairsbx + 1, 2});
+    Result r = solve(q, options, Strided{problem->pairsbx + 1, 2}, start);
 
     const dMLCPStatus status = to_ode_status(r);
     stats->pivots = r.pivots;
@@ -136,7 +139,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     HookState& h = hook();
     WorldState& ws = h.worlds[problem->world];
     if (use_memory && status != dMLCPFailed) ws.memory.remember(keys, problem->step, r.states);
-    if (known_rows && !r.ordering.empty() && r.ordering != options.ordering)
+    if (known_rows && !r.ordering.empty() && r.ordering != start.ordering)
         ws.orderings.store(structure, r.ordering);
     h.counters.islands += 1;
     h.counters.warm_started += warm ? 1 : 0;

@@ -47,15 +47,17 @@ struct PermutedProblem {
 
 /// The factor strategy: the method's own, except Bpp on small islands (dense_island_rows).
 Method strategy_of(const Problem& p, const Options& o) {
-    return o.method == Method::Bpp && p.n <= o.dense_island_rows ? Method::BppChol : o.method;
+    return o.method == Method::Bpp && p.n <= o.tuning.dense_island_rows ? Method::BppChol : o.method;
 }
 
 /// The symmetric permutation to factor in: the given one where the strategy orders and it is
 /// valid (the hook passes the previous step's), else ordering/ordering_choice.h's.
-void order(const Problem& p, const linalg::SymmetricRows& A, const Options& o, Method strategy, PermutedProblem& q) {
-    const bool given = (strategy == Method::Bpp || strategy == Method::BppSky) && ordering::is_permutation(o.ordering, p.n);
+void order(const Problem& p, const linalg::SymmetricRows& A, const Options& o, const Start& start, Method strategy,
+           PermutedProblem& q) {
+    const bool given = (strategy == Method::Bpp || strategy == Method::BppSky) && ordering::is_permutation(start.ordering, p.n);
     static const std::vector<RowState> kNoHint;
-    q.perm = given ? o.ordering : ordering::choose_ordering(strategy, p, A, o.order_tight_last ? o.warm_start : kNoHint);
+    q.perm = given ? start.ordering
+                   : ordering::choose_ordering(strategy, p, A, o.tuning.order_tight_last ? start.states : kNoHint);
     q.A = &A;
     if (!is_identity(q.perm)) {
         A.permute_into(q.perm, q.permuted_A);
@@ -63,10 +65,10 @@ void order(const Problem& p, const linalg::SymmetricRows& A, const Options& o, M
     }
 }
 
-std::vector<RowState> permuted_warm_start(const Problem& p, const Options& o, const std::vector<int>& perm) {
+std::vector<RowState> permuted_start(const Problem& p, const Start& start, const std::vector<int>& perm) {
     std::vector<RowState> states(static_cast<std::size_t>(p.n), RowState::Free);
-    if (!o.warm_start.empty())
-        for (int i = 0; i < p.n; ++i) states[i] = o.warm_start[perm[i]];
+    if (!start.states.empty())
+        for (int i = 0; i < p.n; ++i) states[i] = start.states[perm[i]];
     return states;
 }
 
@@ -135,10 +137,11 @@ std::vector<char> tight_set(const std::vector<RowState>& states) {
 
 }  // namespace
 
-Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, std::vector<double>& x) {
+Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, const Start& start,
+                 std::vector<double>& x) {
     const Method strategy = strategy_of(problem, options);
     PermutedProblem& q = thread_problem();
-    order(problem, A, options, strategy, q);
+    order(problem, A, options, start, strategy, q);
     q.solver = make_free_solver(strategy, *q.A);
     if (!q.solver) {
         x.assign(static_cast<std::size_t>(problem.n), 0.0);
@@ -148,7 +151,7 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
         return r;
     }
     build_boxed_lcp(problem, *q.A, q.perm, q.lcp, q.friction);
-    std::vector<RowState> states = permuted_warm_start(problem, options, q.perm);
+    std::vector<RowState> states = permuted_start(problem, start, q.perm);
     std::vector<double> xp;
     PivotCounters counters;
     FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters);
@@ -156,7 +159,7 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     int rounds = 0, lemke_pivots = 0;
     std::string note;
     if (options.friction == FrictionMode::Consistent) {
-        ConsistentFriction policy(fixed, q.lcp, q.friction, options, counters);
+        ConsistentFriction policy(fixed, q.lcp, q.friction, options, !start.states.empty(), counters);
         outcome = policy.solve(states, xp);
         rounds = policy.rounds();
         lemke_pivots = policy.lemke_pivots();

@@ -1,5 +1,5 @@
 // The BPP methods end to end: ordering, factor strategy, friction policy, the rescue
-// continuation of a fixed-bound solve that does not converge plainly (Options::rescue_after), the
+// continuation of a fixed-bound solve that does not converge plainly (Tuning::rescue_after), the
 // optional up-front continuation and the regularize-on-breakdown retry around the pivoting loop.
 #pragma once
 
@@ -15,6 +15,7 @@ namespace ode_bpp::pivoting {
 /// x: out, n entries, original space (zero when the status is NotSpd).
 /// Fills status, message, fallback ("regularized" or empty), the counters, tight, states
 /// (original space) and factor_error; leaves the residual fields to the caller.
-Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, std::vector<double>& x);
+Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, const Start& start,
+                 std::vector<double>& x);
 
 }  // namespace ode_bpp::pivoting

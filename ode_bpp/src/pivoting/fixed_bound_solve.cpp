@@ -25,14 +25,14 @@ FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<
     }
 }
 
-/// The plain loop gets Options::rescue_after steps; if it has not converged by then, the rescue
+/// The plain loop gets Tuning::rescue_after steps; if it has not converged by then, the rescue
 /// starts afresh from the warm start with the rest of the budget, and should it give up, the
 /// plain loop resumes from its least infeasible index set. Converged, MaxIterations or Breakdown.
 LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vector<double>& x, int budget) {
     const int first = counters_.pivots;
     const auto left = [&] { return budget - (counters_.pivots - first); };
-    const bool rescue_allowed = options_.rescue_after > 0;
-    LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, options_.rescue_after) : budget),
+    const bool rescue_allowed = options_.tuning.rescue_after > 0;
+    LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, options_.tuning.rescue_after) : budget),
                                              states, x, counters_);
     if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
     outcome = rescue(states, x, left());
@@ -51,7 +51,7 @@ LoopOutcome FixedBoundSolver::rescue(std::vector<RowState>& states, std::vector<
     entry_x_ = x;
     const int first = counters_.pivots;
     PivotSettings stage = settings(budget);
-    const int murty_after = std::max(0, options_.murty_after);
+    const int murty_after = std::max(0, options_.tuning.murty_after);
     stage.stall_after = murty_after > std::numeric_limits<int>::max() - tuning::kMurtyPatience
                             ? 0  // no stall count: revisits alone end a stage
                             : murty_after + tuning::kMurtyPatience;
@@ -81,11 +81,11 @@ LoopOutcome FixedBoundSolver::rescue(std::vector<RowState>& states, std::vector<
     return LoopOutcome::Stalled;
 }
 
-/// Options::continuation_stages solves on A + delta_k I before the first fixed-bound solve,
+/// Tuning::continuation_stages solves on A + delta_k I before the first fixed-bound solve,
 /// each from the last one's index set; later solves start warm anyway.
 void FixedBoundSolver::run_continuation(std::vector<RowState>& states, std::vector<double>& x, int budget) {
     continuation_done_ = true;
-    const int stages = options_.continuation_stages;
+    const int stages = options_.tuning.continuation_stages;
     for (int k = 0; k < stages; ++k) {
         const double delta = regularization_.continuation(k, stages);
         if (delta <= shift() || !prepare(delta)) break;
@@ -107,7 +107,7 @@ bool FixedBoundSolver::prepare(double shift) {
 PivotSettings FixedBoundSolver::settings(int budget) const {
     PivotSettings s;
     s.max_pivots = budget;
-    s.murty_after = std::max(0, options_.murty_after);
+    s.murty_after = std::max(0, options_.tuning.murty_after);
     s.tolerance = options_.tolerance;
     s.record_steps = options_.record_steps;
     return s;

@@ -31,7 +31,7 @@ PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const Frictio
 }
 
 PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vector<double>& x) {
-    if (options_.link_friction && !options_.warm_start.empty() && !friction_.empty()) {
+    if (tuning_.link_friction && warm_ && !friction_.empty()) {
         const std::vector<RowState> warm = states;
         friction_.set_bounds(lcp_, friction_.mu);  // placeholders: every step sets them from the normals first
         Stage stage = linked_solve(states, x, /*from_answer=*/false);
@@ -40,10 +40,10 @@ PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vect
         stage = lemke(states, x);
         if (stage != Stage::Unfinished) return stage == Stage::Finished ? PolicyOutcome::Converged : PolicyOutcome::NotSpd;
     }
-    const PolicyOutcome frozen = solve_frozen(fixed_, lcp_, friction_, budget(), states, x);
+    const PolicyOutcome frozen = solve_frozen(fixed_, lcp_, friction_, budget_, states, x);
     if (frozen == PolicyOutcome::NotSpd || friction_.empty()) return frozen;
     bool budget_spent = frozen == PolicyOutcome::BudgetSpent;
-    if (options_.link_friction) {
+    if (tuning_.link_friction) {
         for (const bool from_lemke : {false, true}) {
             const Stage stage = from_lemke ? lemke(states, x) : linked_solve(states, x, /*from_answer=*/true);
             if (stage != Stage::Unfinished) return stage == Stage::Finished ? PolicyOutcome::Converged : PolicyOutcome::NotSpd;
@@ -53,7 +53,7 @@ PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vect
         // be consistent in its friction but not yet a solution of the other rows
         friction_.set_bounds(lcp_, friction_.targets(x));
         ++rounds_;
-        const FixedOutcome o = fixed_.solve(states, x, budget());
+        const FixedOutcome o = fixed_.solve(states, x, budget_);
         if (o == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
         budget_spent = budget_spent || o == FixedOutcome::BudgetSpent;
     }
@@ -61,19 +61,19 @@ PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vect
 }
 
 /// Outer rounds until every friction row is consistent with the bound its own normal implies,
-/// or Options::max_friction_rounds. budget_spent: an earlier fixed-bound solve of this answer ran
+/// or Tuning::max_friction_rounds. budget_spent: an earlier fixed-bound solve of this answer ran
 /// out of steps (its status then says so).
 PolicyOutcome ConsistentFriction::outer_rounds(std::vector<RowState>& states, std::vector<double>& x, bool budget_spent) {
-    const double d = options_.friction_damping > 0 && options_.friction_damping <= 1 ? options_.friction_damping : 1.0;
+    const double d = tuning_.friction_damping > 0 && tuning_.friction_damping <= 1 ? tuning_.friction_damping : 1.0;
     FrictionBoundUpdate update(d);
     for (;;) {
-        if (friction_.consistent(lcp_, options_.tolerance, states, x))
+        if (friction_.consistent(lcp_, tolerance_, states, x))
             return budget_spent ? PolicyOutcome::BudgetSpent : PolicyOutcome::Converged;
-        if (rounds_ >= options_.max_friction_rounds)
+        if (rounds_ >= tuning_.max_friction_rounds)
             return budget_spent ? PolicyOutcome::BudgetSpent : PolicyOutcome::FrictionInconsistent;
         friction_.set_bounds(lcp_, update.next(friction_.bounds(lcp_), friction_.targets(x)));
         ++rounds_;
-        const FixedOutcome o = fixed_.solve(states, x, budget());
+        const FixedOutcome o = fixed_.solve(states, x, budget_);
         if (o == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
         budget_spent = budget_spent || o == FixedOutcome::BudgetSpent;
     }
@@ -87,11 +87,11 @@ ConsistentFriction::Stage ConsistentFriction::linked_solve(std::vector<RowState>
     if (from_answer) friction_.set_bounds(lcp_, friction_.targets(x));
     friction_.link(lcp_);
     ++counters_.linked_solves;
-    const FixedOutcome o = fixed_.solve(states, x, tuning::kLinkedBudgetFactor * budget());
+    const FixedOutcome o = fixed_.solve(states, x, tuning::kLinkedBudgetFactor * budget_);
     lcp_.friction_normal.clear();
     lcp_.friction_mu.clear();
     if (o == FixedOutcome::NotSpd) return Stage::NotSpd;
-    return o == FixedOutcome::Converged && friction_.consistent(lcp_, options_.tolerance, states, x) ? Stage::Finished
+    return o == FixedOutcome::Converged && friction_.consistent(lcp_, tolerance_, states, x) ? Stage::Finished
                                                                                                    : Stage::Unfinished;
 }
 
@@ -100,7 +100,7 @@ ConsistentFriction::Stage ConsistentFriction::linked_solve(std::vector<RowState>
 /// certifies it to the loop's own tolerance (usually in one step). Runs once per solve;
 /// Unfinished leaves states and x as they came in.
 ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& states, std::vector<double>& x) {
-    if (lemke_tried_ || !options_.lemke_friction) return Stage::Unfinished;
+    if (lemke_tried_ || !tuning_.lemke_friction) return Stage::Unfinished;
     lemke_tried_ = true;
     if (lcp_.n() > tuning::kLemkeMaxRows || lemke_variables_at_most() > tuning::kLemkeMaxVariables) {
         note_ = "Lemke stage skipped: the island is too large for a dense LCP";

@@ -4,6 +4,7 @@
 // Index space: the permuted space of the solve.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,7 @@ namespace ode_bpp::pivoting {
 enum class PolicyOutcome {
     Converged,             ///< every row satisfies Eq. 4 (Consistent: with bounds from its own normals)
     BudgetSpent,           ///< a fixed-bound solve of the answer ran out of pivot steps
-    FrictionInconsistent,  ///< Consistent: the bounds still moved after Options::max_friction_rounds
+    FrictionInconsistent,  ///< Consistent: the bounds still moved after Tuning::max_friction_rounds
     NotSpd,                ///< a Cholesky breakdown even on the largest regularization
 };
 
@@ -40,9 +41,11 @@ PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const Frictio
 /// (docs/tuning.md has the measurements behind the order).
 class ConsistentFriction {
 public:
+    /// warm: the solve starts from an earlier index set (Start::states), which stage 1 needs.
     ConsistentFriction(FixedBoundSolver& fixed, BoxedLcp& lcp, const FrictionSet& friction, const Options& options,
-                       PivotCounters& counters)
-        : fixed_(fixed), lcp_(lcp), friction_(friction), options_(options), counters_(counters) {}
+                       bool warm, PivotCounters& counters)
+        : fixed_(fixed), lcp_(lcp), friction_(friction), tuning_(options.tuning), tolerance_(options.tolerance),
+          budget_(std::max(1, options.max_pivots)), warm_(warm), counters_(counters) {}
 
     PolicyOutcome solve(std::vector<RowState>& states, std::vector<double>& x);
 
@@ -59,14 +62,16 @@ private:
     Stage linked_solve(std::vector<RowState>& states, std::vector<double>& x, bool from_answer);
     Stage lemke(std::vector<RowState>& states, std::vector<double>& x);
     PolicyOutcome outer_rounds(std::vector<RowState>& states, std::vector<double>& x, bool budget_spent);
-    int budget() const { return std::max(1, options_.max_pivots); }
     /// An upper bound of the friction LCP's size (friction_lcp.h).
     int lemke_variables_at_most() const;
 
     FixedBoundSolver& fixed_;
     BoxedLcp& lcp_;
     const FrictionSet& friction_;
-    const Options& options_;
+    const Tuning& tuning_;
+    double tolerance_;
+    int budget_;  ///< Options::max_pivots, at least 1
+    bool warm_;
     PivotCounters& counters_;
     int rounds_ = 0;
     int lemke_pivots_ = 0;

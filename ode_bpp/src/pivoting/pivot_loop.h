@@ -10,10 +10,12 @@
 
 namespace ode_bpp::pivoting {
 
+/// What one run of the loop may do; the defaults are Options' and Tuning's (fixed_bound_solve.cpp
+/// derives every run's settings from them).
 struct PivotSettings {
-    int max_pivots = 60;     ///< solves of Eq. 6 allowed in this run
-    int murty_after = 10;    ///< block steps without a new minimum of infeasible rows before Murty
-    double tolerance = 1e-9; ///< relative, scaled per row (see classify in pivot_loop.cpp)
+    int max_pivots = Options{}.max_pivots;       ///< solves of Eq. 6 allowed in this run
+    int murty_after = Tuning{}.murty_after;      ///< block steps without a new minimum of infeasible rows before Murty
+    double tolerance = Options{}.tolerance;      ///< relative, scaled per row (classify_row.h)
     bool record_steps = true;
     /// Steps without a new least count of infeasible rows after which the run gives up with
     /// LoopOutcome::Stalled (in the block and in Murty's phase alike); 0: never. A run that may

@@ -4,9 +4,9 @@
 //    numerically positive definite; then the next rung of a ladder 1e-12 .. 1e-6 max_i A_ii,
 //    x100 per rung, and the answer reports the delta it solves (Fallback::Regularized);
 //  - the rescue: where block pivoting on the target does not converge within
-//    Options::rescue_after steps, a continuation on A + delta I with delta falling from 1e-4
+//    Tuning::rescue_after steps, a continuation on A + delta I with delta falling from 1e-4
 //    max_i A_ii to the target, as fast as the index set can follow (RescueSchedule);
-//  - the optional up-front continuation (Options::continuation_stages): delta_k falling
+//  - the optional up-front continuation (Tuning::continuation_stages): delta_k falling
 //    geometrically from 1e-4 to 1e-12 max_i A_ii before the first solve.
 // Every delta is relative to max_i A_ii, an upper bound of max |A_ij| for SPD A.
 #pragma once

@@ -123,7 +123,7 @@ private:
     bool pivot(std::vector<RowState>& states, std::vector<double>& x, int max_steps, int& steps) {
         normalize(states);
         int least_count = n_ + 1;
-        int block_steps_left = std::max(0, o_.murty_after);
+        int block_steps_left = std::max(0, o_.tuning.murty_after);
         bool in_murty = false;
         best_count_ = n_ + 1;
         for (steps = 0; steps < max_steps;) {
@@ -137,7 +137,7 @@ private:
             }
             if (inf.count() < least_count) {
                 least_count = inf.count();
-                block_steps_left = std::max(0, o_.murty_after);
+                block_steps_left = std::max(0, o_.tuning.murty_after);
                 in_murty = false;
                 flip_all(inf, states);
             } else if (block_steps_left > 0) {
@@ -289,18 +289,19 @@ private:
 
 bool is_small_island(int n, const Options& options) {
     return options.method == Method::Bpp && options.friction == FrictionMode::Frozen && n >= 1 &&
-           n <= options.dense_island_rows;
+           n <= options.tuning.dense_island_rows;
 }
 
 bool takes_small_island(const Problem& problem, const Options& options) {
     return is_small_island(problem.n, options) && problem.sparse == nullptr && problem.A != nullptr;
 }
 
-bool solve_small_island(const Problem& problem, const Options& options, std::vector<double>& x, Result& r) {
+bool solve_small_island(const Problem& problem, const Options& options, const Start& start, std::vector<double>& x,
+                        Result& r) {
     Workspace& ws = thread_workspace();
     std::vector<RowState>& states = r.states;
     states.assign(static_cast<std::size_t>(problem.n), RowState::Free);
-    if (!options.warm_start.empty()) states.assign(options.warm_start.begin(), options.warm_start.end());
+    if (!start.states.empty()) states.assign(start.states.begin(), start.states.end());
     x.assign(static_cast<std::size_t>(problem.n), 0.0);
     if (!SmallIsland(problem, options, ws, r).solve(states, x)) return false;
     r.status = Status::Converged;

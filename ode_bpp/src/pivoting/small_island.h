@@ -1,5 +1,5 @@
 // The small-island path of Method::Bpp: block principal pivoting (paper Alg. 1, Júdice-Pires with
-// Murty's safeguard) on a dense A of at most Options::dense_island_rows rows, in the caller's
+// Murty's safeguard) on a dense A of at most Tuning::dense_island_rows rows, in the caller's
 // order, with Frozen friction.
 //
 // On an island of a few rows the general driver's set-up (ordering, factor strategy, permuted
@@ -20,17 +20,18 @@
 namespace ode_bpp::pivoting {
 
 /// True when an island of n rows belongs on this path: Method::Bpp, Frozen friction and
-/// 1 <= n <= options.dense_island_rows (callers that assemble A choose its form by this).
+/// 1 <= n <= options.tuning.dense_island_rows (callers that assemble A choose its form by this).
 bool is_small_island(int n, const Options& options);
 
 /// True when solve_small_island may take the problem: is_small_island and A in the dense form
 /// (Problem::A, no Problem::sparse).
 bool takes_small_island(const Problem& problem, const Options& options);
 
-/// Solves a validated problem that takes_small_island accepts.
+/// Solves a validated problem that takes_small_island accepts, from start.states (or all free).
 /// x: out, n entries. r: out; on success status Converged, the pivot counters (every step a
 /// refactorization), tight_per_step, states and tight; the residual fields are left to the
 /// caller. Returns false, leaving x and r unspecified, when the island needs the general driver.
-bool solve_small_island(const Problem& problem, const Options& options, std::vector<double>& x, Result& r);
+bool solve_small_island(const Problem& problem, const Options& options, const Start& start, std::vector<double>& x,
+                        Result& r);
 
 }  // namespace ode_bpp::pivoting

@@ -10,7 +10,7 @@ namespace ode_bpp::pivoting::tuning {
 constexpr double kFirstShift = 1e-12;
 constexpr double kShiftGrowth = 100;
 constexpr double kLastShift = 1e-6;
-/// Up-front continuation (Options::continuation_stages): delta_k = start * span^(k / stages).
+/// Up-front continuation (Tuning::continuation_stages): delta_k = start * span^(k / stages).
 constexpr double kContinuationStart = 1e-4;
 constexpr double kContinuationSpan = 1e-8;
 /// Rescue continuation: first delta; the most regularization tried when even that stalls.
@@ -24,7 +24,7 @@ constexpr double kRescueMaxRatio = 0.9;
 /// Below this delta the next stage is the target itself.
 constexpr double kRescueFloor = 1e-12;
 /// A rescue stage stalls when its least count of infeasible rows has not fallen for
-/// Options::murty_after + this many steps (Murty's phase gets that many single pivots), or at
+/// Tuning::murty_after + this many steps (Murty's phase gets that many single pivots), or at
 /// once when its block steps revisit an index set.
 constexpr int kMurtyPatience = 2;
 

@@ -2,6 +2,8 @@
 // small_island.cpp classify alike, so that both accept the same answers).
 #pragma once
 
+#include <vector>
+
 #include "ode_bpp/solver.h"
 
 namespace ode_bpp::pivoting {
@@ -35,6 +37,34 @@ inline RowVerdict classify_row(RowState s, double x, double w, double lo, double
             break;
     }
     return {s};
+}
+
+/// Infeasible rows of one iterate and their total violation (in units of w, for tie-breaks).
+struct Infeasibility {
+    std::vector<int> rows;            ///< ascending index
+    std::vector<RowState> flip_to;    ///< the state Eq. 4 moves each of them to
+    double violation = 0;
+    int count() const { return static_cast<int>(rows.size()); }
+    void clear() {
+        rows.clear();
+        flip_to.clear();
+        violation = 0;
+    }
+};
+
+/// Eq. 4 over rows 0 .. n-1 (classify_row each), into inf. diag(i): A_ii (+ shift).
+template <typename Diagonal>
+void classify_rows(int n, const std::vector<RowState>& states, const std::vector<double>& x, const std::vector<double>& w,
+                   const std::vector<double>& lo, const std::vector<double>& hi, Diagonal diag,
+                   const std::vector<double>& scale, double tol, Infeasibility& inf) {
+    inf.clear();
+    for (int i = 0; i < n; ++i) {
+        const RowVerdict v = classify_row(states[i], x[i], w[i], lo[i], hi[i], diag(i), scale[i], tol);
+        if (v.to == states[i]) continue;
+        inf.rows.push_back(i);
+        inf.flip_to.push_back(v.to);
+        inf.violation += v.excess;
+    }
 }
 
 /// The multiplier of a tight row with the wrong sign (w > 0 at hi, w < 0 at lo), else 0: what

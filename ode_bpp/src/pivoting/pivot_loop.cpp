@@ -15,19 +15,6 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-/// Infeasible rows of one iterate and their total violation (in units of w, for tie-breaks).
-struct Infeasibility {
-    std::vector<int> rows;            ///< ascending permuted index
-    std::vector<RowState> flip_to;    ///< the state Eq. 4 moves each of them to
-    double violation = 0;
-    int count() const { return static_cast<int>(rows.size()); }
-    void clear() {
-        rows.clear();
-        flip_to.clear();
-        violation = 0;
-    }
-};
-
 /// What goes with an x: w = (A + shift I) x - b, the row scales (|A||x| + |b|)_i, and the
 /// bounds in force (moving friction bounds change them).
 struct Iterate {
@@ -336,17 +323,9 @@ private:
 
     /// Eq. 4 row by row (classify_row.h).
     const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
-        Infeasibility& inf = ws_.inf;
-        inf.clear();
-        for (int i = 0; i < n_; ++i) {
-            const RowVerdict v = classify_row(states[i], x[i], it().w[i], it().lo[i], it().hi[i],
-                                              lcp_.A->diag(i) + lcp_.shift, it().scale[i], settings_.tolerance);
-            if (v.to == states[i]) continue;
-            inf.rows.push_back(i);
-            inf.flip_to.push_back(v.to);
-            inf.violation += v.excess;
-        }
-        return inf;
+        const auto diag = [this](int i) { return lcp_.A->diag(i) + lcp_.shift; };
+        classify_rows(n_, states, x, it().w, it().lo, it().hi, diag, it().scale, settings_.tolerance, ws_.inf);
+        return ws_.inf;
     }
 
     /// Júdice-Pires block step: every infeasible row changes set at once (Eq. 4).

@@ -19,14 +19,6 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kPolishRounds = 2;
 constexpr int kPolishSteps = 6;
 
-/// Infeasible rows of one iterate (ascending index) and their total violation.
-struct Infeasible {
-    std::vector<int> rows;
-    std::vector<RowState> flip_to;
-    double violation = 0;
-    int count() const { return static_cast<int>(rows.size()); }
-};
-
 /// Buffers of one solve, kept per thread so that their capacity outlives it: a warm solve of a
 /// small island allocates nothing. One solve at a time per thread (nothing here starts another).
 struct Workspace {
@@ -35,7 +27,7 @@ struct Workspace {
     std::vector<int> free;
     std::vector<RowState> requested, best_states, trial, kept_states;
     std::vector<double> kept_x, kept_w, kept_scale;
-    Infeasible inf, best_inf;
+    Infeasibility inf, best_inf;
 };
 
 // noinline: inlined, GCC re-derives a thread_local's address at every use (symmetric_rows.cpp)
@@ -129,7 +121,7 @@ private:
         for (steps = 0; steps < max_steps;) {
             ++steps;
             if (!solve_step(states, x)) return false;
-            const Infeasible& inf = classify(states, x);
+            const Infeasibility& inf = classify(states, x);
             remember_if_best(inf, states);
             if (inf.count() == 0) {
                 orient_pinned_rows(states);
@@ -197,33 +189,24 @@ private:
     /// w = A x - b and the row scales |A||x| + |b| (residuals.h).
     void refresh_w(const std::vector<double>& x) { residual_vectors(p_, ConstStrided{x.data(), 1}, ws_.w, ws_.scale); }
 
-    const Infeasible& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
-        Infeasible& inf = ws_.inf;
-        inf.rows.clear();
-        inf.flip_to.clear();
-        inf.violation = 0;
-        for (int i = 0; i < n_; ++i) {
-            const RowVerdict v = classify_row(states[i], x[i], ws_.w[i], ws_.lo[i], ws_.hi[i],
-                                              p_.A[static_cast<std::ptrdiff_t>(i) * p_.lda + i], ws_.scale[i], o_.tolerance);
-            if (v.to == states[i]) continue;
-            inf.rows.push_back(i);
-            inf.flip_to.push_back(v.to);
-            inf.violation += v.excess;
-        }
-        return inf;
+    /// Eq. 4 row by row (classify_row.h).
+    const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
+        const auto diag = [this](int i) { return p_.A[static_cast<std::ptrdiff_t>(i) * p_.lda + i]; };
+        classify_rows(n_, states, x, ws_.w, ws_.lo, ws_.hi, diag, ws_.scale, o_.tolerance, ws_.inf);
+        return ws_.inf;
     }
 
-    static void flip_all(const Infeasible& inf, std::vector<RowState>& states) {
+    static void flip_all(const Infeasibility& inf, std::vector<RowState>& states) {
         for (int k = 0; k < inf.count(); ++k) states[inf.rows[k]] = inf.flip_to[k];
     }
 
     /// Murty's rule in the driver's orientation: only the infeasible row of largest index moves.
-    void flip_largest(const Infeasible& inf, std::vector<RowState>& states) {
+    void flip_largest(const Infeasibility& inf, std::vector<RowState>& states) {
         ++r_.murty_pivots;
         states[inf.rows.back()] = inf.flip_to.back();
     }
 
-    void remember_if_best(const Infeasible& inf, const std::vector<RowState>& states) {
+    void remember_if_best(const Infeasibility& inf, const std::vector<RowState>& states) {
         if (inf.count() > best_count_ || (inf.count() == best_count_ && inf.violation >= best_violation_)) return;
         best_count_ = inf.count();
         best_violation_ = inf.violation;

@@ -83,6 +83,65 @@ struct Workspace {
     Snapshot kept;              ///< the converged answer while a polish round tries another
 };
 
+/// A friction row at a bound whose normal is free: its value moves with the normal.
+bool is_linked(const BoxedLcp& lcp, int i, const std::vector<RowState>& states) {
+    return lcp.has_moving_bounds() && lcp.friction_normal[i] >= 0 && states[lcp.friction_normal[i]] == RowState::Free;
+}
+
+/// Bounds -+mu |x_n| of row i from its normal's value.
+void set_friction_bound(const BoxedLcp& lcp, int i, double normal_value, Iterate& it) {
+    it.hi[i] = lcp.friction_mu[i] * std::abs(normal_value);
+    it.lo[i] = -it.hi[i];
+}
+
+/// Moving bounds of the friction rows whose normal is tight, from the normal's bound value.
+void bounds_from_tight_normals(const BoxedLcp& lcp, const std::vector<RowState>& states, Iterate& it) {
+    for (int i = 0; i < lcp.n(); ++i) {
+        const int normal = lcp.friction_normal[i];
+        if (normal < 0 || states[normal] == RowState::Free) continue;
+        set_friction_bound(lcp, i, states[normal] == RowState::AtLo ? it.lo[normal] : it.hi[normal], it);
+    }
+}
+
+/// Moving bounds of the friction rows whose normal is free, from the step's x.
+void bounds_from_free_normals(const BoxedLcp& lcp, const std::vector<char>& tight, const std::vector<double>& x, Iterate& it) {
+    for (int i = 0; i < lcp.n(); ++i) {
+        const int normal = lcp.friction_normal[i];
+        if (normal >= 0 && !tight[normal]) set_friction_bound(lcp, i, x[normal], it);
+    }
+}
+
+/// A pinned row (lo = hi) is at both bounds; report it at the one its w supports (w >= 0: at lo).
+void orient_pinned_rows(const Iterate& it, std::vector<RowState>& states) {
+    for (std::size_t i = 0; i < states.size(); ++i)
+        if (it.lo[i] == it.hi[i]) states[i] = it.w[i] >= 0 ? RowState::AtLo : RowState::AtHi;
+}
+
+/// Rows that must be free are free; pinned rows (lo == hi) are tight; a tight state at an
+/// infinite bound cannot hold and starts free, as does anything that is not a RowState.
+void normalize(const BoxedLcp& lcp, const Iterate& it, std::vector<RowState>& states) {
+    states.resize(static_cast<std::size_t>(lcp.n()), RowState::Free);
+    for (int i = 0; i < lcp.n(); ++i) {
+        RowState& s = states[i];
+        if (s != RowState::AtLo && s != RowState::AtHi) s = RowState::Free;  // also garbage values
+        if (lcp.always_free[i]) s = RowState::Free;
+        else if (it.lo[i] == it.hi[i]) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
+        else if (s == RowState::AtLo && std::isinf(it.lo[i])) s = RowState::Free;
+        else if (s == RowState::AtHi && std::isinf(it.hi[i])) s = RowState::Free;
+    }
+}
+
+/// The least infeasible iterate, projected onto [lo, hi]; a free row pushed onto a bound is
+/// recorded at that bound so that the index set describes x.
+void give_projected(const Snapshot& best, std::vector<RowState>& states, std::vector<double>& x, Iterate& it) {
+    best.give(states, x, it);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        if (x[i] < it.lo[i]) { x[i] = it.lo[i]; states[i] = RowState::AtLo; }
+        else if (x[i] > it.hi[i]) { x[i] = it.hi[i]; states[i] = RowState::AtHi; }
+    }
+    orient_pinned_rows(it, states);
+}
+
 [[gnu::noinline]] Workspace& thread_workspace() {
     thread_local Workspace workspace;
     return workspace;
@@ -98,7 +157,7 @@ public:
     }
 
     LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
-        normalize(states);
+        normalize(lcp_, it(), states);
         const LoopOutcome outcome = pivot(states, x, settings_.max_pivots);
         if (outcome == LoopOutcome::Converged && settings_.polish && lcp_.shift == 0)
             polish(states, x, settings_.max_pivots - steps_taken_);
@@ -109,14 +168,11 @@ private:
     Iterate& it() { return ws_.current; }
     const Iterate& it() const { return ws_.current; }
 
-    /// The classification tolerance lets a tight row keep a multiplier of the wrong sign (w_i > 0
-    /// at hi, w_i < 0 at lo) up to tol * (|A||x| + |b|)_i. Where A is nearly singular (CFM 1e-10,
-    /// four contacts per face) such a set can be an answer to that tolerance far from the exact
-    /// one: box stacks warm-started into pairs of friction rows at opposite bounds (+-mu x_n,
-    /// 1e7 times the exact friction) whose w sat at 0.5-0.9 tol and pushed the contacts along
-    /// their sliding direction; over steps that pumped energy into the stack until it slid by
-    /// centimetres. Rows wrong beyond the factor's accuracy are freed and the loop resumes from
-    /// there; its new answer is kept only if it converges, else the first one stands.
+    /// The polish of a converged index set (docs/tuning.md): the classification tolerance lets a
+    /// tight row keep a multiplier of the wrong sign up to tol * (|A||x| + |b|)_i, which where A is
+    /// nearly singular admits answers far from the exact one (opposed friction at its bounds).
+    /// Rows wrong beyond the factor's accuracy are freed and the loop resumes from there; its new
+    /// answer is kept only if it converges, else the first one stands.
     void polish(std::vector<RowState>& states, std::vector<double>& x, int budget) {
         for (int round = 0; round < tuning::kPolishRounds && budget > 0; ++round) {
             ws_.trial = states;
@@ -165,7 +221,7 @@ private:
             const Infeasibility& inf = classify(states, x);
             remember_if_best(inf, states, x);
             if (inf.count() == 0) {
-                orient_pinned_rows(states);
+                orient_pinned_rows(it(), states);
                 return LoopOutcome::Converged;
             }
             if (inf.count() < least_count) {
@@ -194,33 +250,19 @@ private:
         return give_best(states, x, LoopOutcome::MaxIterations);
     }
 
-    /// Rows that must be free are free; pinned rows (lo == hi) are tight; a tight state at an
-    /// infinite bound cannot hold and starts free, as does anything that is not a RowState.
-    void normalize(std::vector<RowState>& states) const {
-        states.resize(static_cast<std::size_t>(n_), RowState::Free);
-        for (int i = 0; i < n_; ++i) {
-            RowState& s = states[i];
-            if (s != RowState::AtLo && s != RowState::AtHi) s = RowState::Free;  // also garbage values
-            if (lcp_.always_free[i]) s = RowState::Free;
-            else if (pinned(i)) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
-            else if (s == RowState::AtLo && std::isinf(it().lo[i])) s = RowState::Free;
-            else if (s == RowState::AtHi && std::isinf(it().hi[i])) s = RowState::Free;
-        }
-    }
-
     /// One pivot step: x_T at its bounds (Alg. 1 lines 6-7), x_F from Eq. 6, then w (line 9).
     /// With moving friction bounds, linked rows (friction_link.h) are solved with x_F.
     bool solve_step(const std::vector<RowState>& states, std::vector<double>& x) {
         ws_.tight.assign(static_cast<std::size_t>(n_), 0);
         x.assign(static_cast<std::size_t>(n_), 0.0);
-        if (lcp_.has_moving_bounds()) bounds_from_tight_normals(states);
+        if (lcp_.has_moving_bounds()) bounds_from_tight_normals(lcp_, states, it());
         ws_.linked.clear();
         int tight_count = 0;
         for (int i = 0; i < n_; ++i)
             if (states[i] != RowState::Free) {
                 ws_.tight[i] = 1;
                 ++tight_count;
-                if (is_linked(i, states)) ws_.linked.push_back(i);  // x_i = 0 until solved with x_F
+                if (is_linked(lcp_, i, states)) ws_.linked.push_back(i);  // x_i = 0 until solved with x_F
                 else x[i] = value_at(i, states[i]);
             }
         ++counters_.pivots;
@@ -233,7 +275,7 @@ private:
             ws_.linked.clear();
             if (!solve_free_rows(x)) return false;
         }
-        bounds_from_free_normals(x);
+        bounds_from_free_normals(lcp_, ws_.tight, x, it());
         refresh_w(x);
         return true;
     }
@@ -265,32 +307,6 @@ private:
             if (!ws_.tight[i]) x[i] = ws_.x_free[i];
         refresh_w(x);
         return outcome;
-    }
-
-    /// A friction row at a bound whose normal is free: its value moves with the normal.
-    bool is_linked(int i, const std::vector<RowState>& states) const {
-        return lcp_.has_moving_bounds() && lcp_.friction_normal[i] >= 0 && states[lcp_.friction_normal[i]] == RowState::Free;
-    }
-
-    /// Bounds -+mu |x_n| of friction rows whose normal is tight, from the normal's bound value.
-    void bounds_from_tight_normals(const std::vector<RowState>& states) {
-        for (int i = 0; i < n_; ++i) {
-            const int normal = lcp_.friction_normal[i];
-            if (normal >= 0 && states[normal] != RowState::Free) set_friction_bound(i, value_at(normal, states[normal]));
-        }
-    }
-
-    /// Bounds -+mu |x_n| of friction rows whose normal is free, from the step's x.
-    void bounds_from_free_normals(const std::vector<double>& x) {
-        for (int i = 0; i < n_; ++i) {
-            const int normal = lcp_.friction_normal[i];
-            if (normal >= 0 && !ws_.tight[normal]) set_friction_bound(i, x[normal]);
-        }
-    }
-
-    void set_friction_bound(int i, double normal_value) {
-        it().hi[i] = lcp_.friction_mu[i] * std::abs(normal_value);
-        it().lo[i] = -it().hi[i];
     }
 
     /// w = (A + shift I) x - b and the row scales (|A||x| + |b|)_i.
@@ -352,22 +368,9 @@ private:
         ws_.best_inf = inf;
     }
 
-    /// The least infeasible iterate, projected onto [lo, hi]; a free row pushed onto a bound is
-    /// recorded at that bound so that the index set describes x. Returns outcome.
     LoopOutcome give_best(std::vector<RowState>& states, std::vector<double>& x, LoopOutcome outcome) {
-        ws_.best.give(states, x, it());
-        for (int i = 0; i < n_; ++i) {
-            if (x[i] < it().lo[i]) { x[i] = it().lo[i]; states[i] = RowState::AtLo; }
-            else if (x[i] > it().hi[i]) { x[i] = it().hi[i]; states[i] = RowState::AtHi; }
-        }
-        orient_pinned_rows(states);
+        give_projected(ws_.best, states, x, it());
         return outcome;
-    }
-
-    /// A pinned row is at both bounds; report it at the one its w supports (w >= 0: at lo).
-    void orient_pinned_rows(std::vector<RowState>& states) const {
-        for (int i = 0; i < n_; ++i)
-            if (pinned(i)) states[i] = it().w[i] >= 0 ? RowState::AtLo : RowState::AtHi;
     }
 
     const BoxedLcp& lcp_;

@@ -287,6 +287,8 @@ bool solve_small_island(const Problem& problem, const Options& options, const St
     if (!start.states.empty()) states.assign(start.states.begin(), start.states.end());
     x.assign(static_cast<std::size_t>(problem.n), 0.0);
     if (!SmallIsland(problem, options, ws, r).solve(states, x)) return false;
+    // an answer that overflowed (finite but huge entries of A) is the general chain's to handle
+    if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); })) return false;
     r.status = Status::Converged;
     r.tight = static_cast<int>(std::count_if(states.begin(), states.end(), [](RowState s) { return s != RowState::Free; }));
     r.factor_error = std::numeric_limits<double>::quiet_NaN();

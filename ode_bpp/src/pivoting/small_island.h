@@ -30,7 +30,8 @@ bool takes_small_island(const Problem& problem, const Options& options);
 /// Solves a validated problem that takes_small_island accepts, from start.states (or all free).
 /// x: out, n entries. r: out; on success status Converged, the pivot counters (every step a
 /// refactorization), tight_per_step, states and tight; the residual fields are left to the
-/// caller. Returns false, leaving x and r unspecified, when the island needs the general driver.
+/// caller. Returns false, leaving x and r unspecified, when the island needs the general driver
+/// (a spent budget, a breakdown, or an answer that is not finite).
 bool solve_small_island(const Problem& problem, const Options& options, const Start& start, std::vector<double>& x,
                         Result& r);
 

@@ -112,6 +112,14 @@ STABILITY_ARGS ?=
 stability: build
 	@bash scripts/stability.sh $(CMAKE_DIR) results/stability $(STABILITY_ARGS)
 
+# Soak: each paper scene and each pile for 100,000 steps with bpp; bodies finite, no new fallbacks
+# after step 10,000, RSS flat within 1 % -> results/soak/ (CSV, report.md). Long: the piles alone
+# take hours today. SOAK_ARGS="--steps 20000 --scenes 'winch forklift'" for a shorter run.
+.PHONY: soak
+SOAK_ARGS ?=
+soak: build
+	@bash scripts/soak.sh $(CMAKE_DIR) results/soak $(SOAK_ARGS)
+
 # ODE's own demos (ode/demo), unchanged, headless under Xvfb, dantzig vs bpp; results/ode-demos/
 ode-demos: build
 	@bash scripts/ode-demos.sh $(BUILD) results/ode-demos

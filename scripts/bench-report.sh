@@ -49,7 +49,7 @@ done
 command -v python3 >/dev/null || { echo "bench-report: python3 is needed for the report" >&2; exit 1; }
 command -v gnuplot >/dev/null || { echo "bench-report: gnuplot is needed for the charts" >&2; exit 1; }
 
-SCENES=(crane winch parkour offshore forklift forwarder)
+SCENES=(crane winch parkour offshore forklift forwarder cannon stack)
 EVERY=5
 PGS_SWEEPS=10,35,100,300,1000
 PEER_SWEEPS=10,35,100,300

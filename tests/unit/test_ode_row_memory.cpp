@@ -143,5 +143,36 @@ TEST(OrderingCache, EqualIslandsWithDifferentIdentitiesKeepTheirOwnOrderings) {
     EXPECT_EQ(cache.find(changed), nullptr);
 }
 
+// Contacts that come and go (a pile: new contact pairs every step, each seen once) must not make
+// the memory grow: what it holds is bounded by the rows of the last kKeepSteps + 1 steps.
+TEST(RowStateMemory, StaysBoundedWhileContactsComeAndGo) {
+    constexpr int kRowsPerStep = 300, kSteps = 5000;
+    std::vector<int> geoms(static_cast<std::size_t>(kRowsPerStep) * kSteps);
+    RowStateMemory memory;
+    std::vector<RowState> states;
+    std::size_t largest = 0;
+    for (int s = 0; s < kSteps; ++s) {
+        std::vector<RowKey> keys(kRowsPerStep);
+        for (int r = 0; r < kRowsPerStep; ++r) keys[r].a = &geoms[static_cast<std::size_t>(s) * kRowsPerStep + r];
+        memory.recall(keys, static_cast<std::uint64_t>(s + 1), states);
+        memory.remember(keys, static_cast<std::uint64_t>(s + 1), std::vector<RowState>(kRowsPerStep, RowState::AtLo));
+        largest = std::max(largest, memory.size());
+    }
+    EXPECT_LE(largest, (RowStateMemory::kKeepSteps + 1) * kRowsPerStep);
+}
+
+// Islands whose structure changes every step fill the cache, which then starts again: it never
+// holds more than kMaxIslands orderings.
+TEST(OrderingCache, StaysBoundedWhileIslandsChange) {
+    OrderingCache cache;
+    std::size_t largest = 0;
+    for (std::intptr_t k = 0; k < 10 * static_cast<std::intptr_t>(OrderingCache::kMaxIslands); ++k) {
+        cache.store(OrderingCache::Signature{k, 7, 0, 3}, {0, 1, 2});
+        largest = std::max(largest, cache.size());
+    }
+    EXPECT_EQ(largest, OrderingCache::kMaxIslands);
+    EXPECT_NE(cache.find(OrderingCache::Signature{10 * static_cast<std::intptr_t>(OrderingCache::kMaxIslands) - 1, 7, 0, 3}), nullptr);
+}
+
 }  // namespace
 }  // namespace ode_bpp

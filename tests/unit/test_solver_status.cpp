@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <string>
 
@@ -95,6 +96,25 @@ TEST(SolverStatus, DantzigsEarlyExitIsNotConverged) {
     const Result rb = solve(read.file.view(), b, x.data());
     EXPECT_EQ(rb.status, Status::Converged) << rb.message;
     expect_status_agrees(rb, b, "forklift island");
+}
+
+// The captured islands (tests/data/captured, README there): whatever each method makes of them,
+// its status agrees with its residual.
+TEST(SolverStatus, AgreesWithTheResidualOnCapturedIslands) {
+    int files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(io_test::data_dir() / "captured")) {
+        if (entry.path().extension() != ".mlcp") continue;
+        const ReadResult read = read_mlcp(entry.path().string());
+        ASSERT_TRUE(read.ok) << read.error;
+        ++files;
+        for (Method m : {Method::Bpp, Method::Dantzig, Method::Pgs})
+            for (FrictionMode f : {FrictionMode::Frozen, FrictionMode::Consistent}) {
+                const Options o = options_for(m, f, 100);
+                std::vector<double> x(static_cast<std::size_t>(read.file.n));
+                expect_status_agrees(solve(read.file.view(), o, x.data()), o, entry.path().filename().string());
+            }
+    }
+    EXPECT_GE(files, 4);
 }
 
 // mu = +inf: Consistent friction converges (it ended friction-not-consistent), and every method's

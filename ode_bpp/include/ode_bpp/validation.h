@@ -23,7 +23,8 @@ struct ValidationResult {
 ///    (its Dantzig starts from x = 0, which must be feasible); a friction row's lo is ignored;
 ///  - findex (if given): -1 or in [0, n), never the row itself, never a friction row (a normal
 ///    cannot itself be a friction row), never a friction row inside the first nub rows, and the
-///    friction coefficient hi_i = mu_i >= 0;
+///    friction coefficient hi_i = mu_i >= 0 (+inf allowed: ODE's "never slips", an unbounded row;
+///    NaN and negative refused);
 ///  - block structure (if num_blocks > 0): block_row strictly increasing from 0 to n, bodies >= -1
 ///    (the findex and block rules are the file format's too: structure_rules.h).
 /// Reads only; O(n^2) for a dense A's lower triangle, O(non-zeros) for a sparse A.

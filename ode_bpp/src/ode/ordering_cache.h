@@ -29,9 +29,11 @@ public:
     /// Stores (or replaces) the ordering of a signature. Forgets everything once kMaxIslands
     /// signatures are held, so islands that come and go do not accumulate.
     void store(const Signature& structure, const std::vector<int>& ordering);
+    /// Signatures held: at most kMaxIslands.
+    std::size_t size() const { return orderings_.size(); }
+    static constexpr std::size_t kMaxIslands = 256;
 
 private:
-    static constexpr std::size_t kMaxIslands = 256;
     std::map<Signature, std::vector<int>> orderings_;
 };
 

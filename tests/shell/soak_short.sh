@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# A short soak (make soak runs 100,000 steps per scene): the winch, whose chain's contacts on the
+# drum change every step, and the forklift, stepped with bpp past the point where their largest
+# islands and the hook's bounded caches have been met (step 4,000), then 2,000 steps more: every
+# body stays finite, no island goes to ODE's Dantzig, and the process's RSS stays within 1 %.
+# Also: the tool refuses bad arguments with status 2.
+set -euo pipefail
+soak=${ODE_BPP_BINARY_DIR:?}/demos/ode-bpp-soak
+[ -x "$soak" ] || { echo "SKIP: $soak not built"; exit 0; }
+
+out=$("$soak" winch forklift --steps 6000 --baseline 4000 --every 1000 2>/dev/null) || { echo "FAIL: $out"; exit 1; }
+echo "$out"
+[ "$(grep -c ': PASS: ' <<<"$out")" -eq 2 ] || { echo "FAIL: expected two PASS verdicts"; exit 1; }
+
+for args in "" "no-such-scene" "winch --steps 0" "winch --steps 1000 --baseline 1000" "winch --solver nope"; do
+  status=0
+  # shellcheck disable=SC2086  # the arguments are words
+  "$soak" $args > /dev/null 2>&1 || status=$?
+  [ "$status" -eq 2 ] || { echo "FAIL: 'ode-bpp-soak $args' exited $status, not 2"; exit 1; }
+done
+echo "PASS: bad arguments refused"

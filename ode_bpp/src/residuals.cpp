@@ -39,7 +39,7 @@ bool is_free(const Problem& p, ConstStrided x, const std::vector<RowState>* stat
 
 /// s_i = scale_i / A_ii in units of x; for a friction row at least |mu_i| s_n of its normal n,
 /// since its bound mu_i |x_n| is known only to that scale (the solver's certificate,
-/// friction_consistent in bpp_driver.cpp, uses the same). Without it a friction row whose own
+/// FrictionSet::consistent in pivoting/friction_set.h, uses the same). Without it a friction row whose own
 /// scale is rounding (x ~ 1e-13 beside a resting normal) read 0.5 on answers accurate to 1e-12.
 template <typename Diagonal>
 double row_scale(const Problem& p, Diagonal diag, const std::vector<double>& scale, int i) {

@@ -41,7 +41,7 @@ dMass capsule_mass(double mass, double radius, double cylinder_length);
 dMass cylinder_mass(double mass, double radius, double length);
 dMass sphere_mass(double mass, double radius);
 /// Multiplies the rotational inertia by `factor` (the mass stays). Cables take a factor > 1:
-/// at h = 1/60 a chain of light links under a heavy load tears with their true inertia (NOTES).
+/// at h = 1/60 a chain of light links under a heavy load tears with their true inertia (docs/modelling.md).
 void scale_inertia(dMass& m, double factor);
 
 /// A tracked body (see SceneWorld::create_body) with mass `m` at `pos`, axes aligned with the world.

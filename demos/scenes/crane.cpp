@@ -5,7 +5,7 @@
 //  - the crane: a chassis standing on the ground and a boom on a held luffing hinge, so that the
 //    heavy crane and the light cable share one island (mass ratio, Table 2);
 //  - a hoist: a block sliding up the boom tip on a velocity-driven slider (the rope pay-in);
-//  - the cable: capsule links on ball joints, their inertia inflated (NOTES, modelling trap);
+//  - the cable: capsule links on ball joints, their inertia inflated (docs/modelling.md, light links under heavy loads);
 //  - a C-hook (with its counterweight, as real C-hooks have) whose lower arm sits in the pipe's
 //    bore: hoisting brings it into contact with the bore, and the pipe hangs by that contact;
 //  - the pipe: a ring of boxes resting on the ground.
@@ -32,7 +32,7 @@ constexpr double kBoomLength = 18, kBoomElevation = 50 * kPi / 180;
 constexpr int kCableLinks = 130;     // sets the island's size (Table 2: 430 rows)
 constexpr double kCableRadius = 0.02;
 // Link inertia x this: at h = 1/60 the links' true inertia lets the cable tear under the
-// 2 t load (NOTES, modelling trap): under 2e4 N the links' transverse mode is far faster than
+// 2 t load (docs/modelling.md, light links under heavy loads): under 2e4 N the links' transverse mode is far faster than
 // 1/h. 1e3 still leaves mm gaps; 1e4 keeps the joints closed to ~2e-5 m.
 constexpr double kCableInertiaFactor = 10000;
 constexpr double kPipeOuter = 0.70, kPipeInner = 0.55, kPipeLength = 1.5;

@@ -23,7 +23,7 @@ constexpr double kPedestalMass = 2e4, kBoomMass = 1.8e4, kBlockMass = 300;
 constexpr double kJibMass = kCraneMass - kPedestalMass - kBoomMass - kBlockMass;
 constexpr int kCableLinks = 100;
 constexpr double kLinkMass = 1.25, kCableRadius = 0.03;
-// Link inertia x this (NOTES, modelling trap): under the module's 1.5e5 N the links' transverse
+// Link inertia x this (docs/modelling.md, light links under heavy loads): under the module's 1.5e5 N the links' transverse
 // mode is far faster than 1/h; as in the crane, the inflated inertia keeps the joints closed.
 constexpr double kCableInertiaFactor = 2e4;
 

@@ -22,7 +22,7 @@ struct SceneParams {
     double mu = 1.0;               ///< Coulomb friction coefficient
     double gravity = 9.81;         ///< [m/s^2]
     /// ODE CFM of joints and contacts. ODE's double-precision default is 1e-10; the paper's
-    /// compliance c maps to CFM = c / h (NOTES), see cfm_from_compliance().
+    /// compliance c maps to CFM = c / h (docs/modelling.md, compliance), see cfm_from_compliance().
     double cfm = 1e-10;
     double erp = 0.2;              ///< ODE's default ERP
     std::string solver = "bpp";    ///< MLCP solver name for dWorldSetMLCPSolver

@@ -39,7 +39,7 @@ double light_mass(const SweepSpec& s, double heavy) {
 
 int links_of(const SweepSpec& s) { return s.links > 0 ? s.links : default_links(s.pattern); }
 
-/// NOTES' modelling trap: at h = 1/60, light links with their true inertia under a swinging
+/// The modelling trap of docs/modelling.md (light links under heavy loads): at h = 1/60, light links with their true inertia under a swinging
 /// heavy load tear with every solver. As in the crane and offshore scenes, a light link
 /// gets the rotational inertia of a link as heavy as the load (its mass, hence the ratio, stays).
 double light_inertia_factor(double light) { return std::max(1.0, kHeavyMass / light); }

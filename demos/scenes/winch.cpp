@@ -18,7 +18,7 @@ namespace {
 constexpr int kLinks = 50;
 constexpr double kLinkMass = 1.0, kDrumMass = 400;           // Sec. 4.1.6
 constexpr double kLinkLength = 0.2, kLinkRadius = 0.025;     // a 10 m chain
-// The links' rotational inertia x this (NOTES, modelling trap): the dragged chain pulls with
+// The links' rotational inertia x this (docs/modelling.md, light links under heavy loads): the dragged chain pulls with
 // up to ~500 N, and at h = 1/60 the true inertia of a 1 kg link lets the chain kink apart.
 constexpr double kLinkInertiaFactor = 100;
 constexpr double kDrumRadius = 0.3, kDrumLength = 1.0, kDrumHeight = 1.2;

@@ -109,6 +109,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     const bool use_memory = known_rows && has_bounded_rows(*problem);
 
     thread_local Start start;  // its vectors keep their capacity from island to island
+    start.ordering.clear();
     Options options;
     bool warm = false;
     {
@@ -116,14 +117,11 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
         WorldState& ws = hook().worlds[problem->world];
         options = ws.settings.options;
         if (ws.settings.warm_start && use_memory) warm = ws.memory.recall(keys, problem->step, start.states);
-        if (known_rows) {
+        if (known_rows)
             if (const std::vector<int>* known = ws.orderings.find(structure)) start.ordering = *known;
-            else start.ordering.clear();
-        }
     }
     options.method = method;
     if (!warm) start.states.clear();
-    if (!known_rows) start.ordering.clear();
     const Problem q = view.of(*problem, pivoting::is_small_island(problem->m, options));
 
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "linalg/dense_cholesky.h"
 #include "ode_bpp/residuals.h"
@@ -66,9 +67,7 @@ public:
         if (!converges(states, x)) return false;
         for (int i = 0; i < n_; ++i) {
             if (!is_friction_row(p_, i)) continue;
-            const double normal = x[p_.findex[i]];
-            ws_.hi[i] = normal == 0 ? 0.0 : std::abs(p_.hi[i] * normal);
-            ws_.lo[i] = -ws_.hi[i];
+            std::tie(ws_.lo[i], ws_.hi[i]) = effective_bounds(p_, ConstStrided{x.data(), 1}, i);
             states[i] = ws_.requested[i];
         }
         return converges(states, x);

@@ -128,7 +128,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     Result r = solve(q, options, Strided{problem->pairsbx + 1, 2}, start);
 
     const dMLCPStatus status = to_ode_status(r);
-    stats->pivots = r.pivots;
+    stats->pivots = r.pivoting.pivots;
     stats->tight = r.tight;
     stats->fallbacks = r.fallback == Fallback::None ? 0 : 1;
     stats->fallback = fallback_name(r);

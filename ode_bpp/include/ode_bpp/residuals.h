@@ -4,6 +4,8 @@
 // Index space: the caller's original row order throughout.
 #pragma once
 
+#include "ode_bpp/export.h"
+
 #include <utility>
 #include <vector>
 
@@ -17,18 +19,18 @@ namespace ode_bpp {
 /// +inf (ODE's "never slips": such a row is unbounded whatever its normal, docs/modelling.md);
 /// +-|mu_i x[findex[i]]| for any other friction row (0 when the normal impulse is 0, as ODE's
 /// Dantzig does); (lo_i, hi_i) otherwise. x: n entries.
-std::pair<double, double> effective_bounds(const Problem& problem, ConstStrided x, int i);
+ODE_BPP_API std::pair<double, double> effective_bounds(const Problem& problem, ConstStrided x, int i);
 
 /// w = A x - b and scale = |A||x| + |b| (n entries each, outputs), with the full symmetric A read
 /// from its lower triangle. O(n^2).
-void residual_vectors(const Problem& problem, ConstStrided x, std::vector<double>& w, std::vector<double>& scale);
+ODE_BPP_API void residual_vectors(const Problem& problem, ConstStrided x, std::vector<double>& w, std::vector<double>& scale);
 
 /// True for a friction row whose coefficient mu_i = hi_i is +inf: an unbounded row (effective_bounds).
-bool is_unbounded_friction_row(const Problem& problem, int i);
+ODE_BPP_API bool is_unbounded_friction_row(const Problem& problem, int i);
 
 /// All of Residuals at x (n entries). states (n entries) defines the free set of the free
 /// residual; null means the rows strictly inside their effective bounds. The problem must have
 /// passed validate(). O(n^2).
-Residuals compute_residuals(const Problem& problem, ConstStrided x, const std::vector<RowState>* states = nullptr);
+ODE_BPP_API Residuals compute_residuals(const Problem& problem, ConstStrided x, const std::vector<RowState>* states = nullptr);
 
 }  // namespace ode_bpp

@@ -9,6 +9,8 @@
 // All index spaces in this header are the caller's original row order.
 #pragma once
 
+#include "ode_bpp/export.h"
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -71,18 +73,18 @@ enum class Method {
     Dantzig,   ///< "dantzig": ODE's stock Dantzig through dSolveMLCPDantzig (needs the ODE library)
     Pgs,       ///< "pgs": projected Gauss-Seidel, Options::pgs_iterations sweeps
 };
-const char* to_string(Method m);
-std::optional<Method> method_from_string(std::string_view name);
+ODE_BPP_API const char* to_string(Method m);
+ODE_BPP_API std::optional<Method> method_from_string(std::string_view name);
 /// All method names, in the order of the enum.
-std::vector<std::string> method_names();
+ODE_BPP_API std::vector<std::string> method_names();
 
 /// How friction bounds follow the normal impulses.
 enum class FrictionMode {
     Frozen,      ///< Dantzig's semantics: bounds fixed from the normals of a first solve
     Consistent,  ///< at convergence |x_i| <= mu_i * x_findex[i] for every friction row
 };
-const char* to_string(FrictionMode f);
-std::optional<FrictionMode> friction_from_string(std::string_view name);
+ODE_BPP_API const char* to_string(FrictionMode f);
+ODE_BPP_API std::optional<FrictionMode> friction_from_string(std::string_view name);
 
 enum class Status {
     /// an answer within certification_level() of exact in the residual of its friction semantics
@@ -99,9 +101,9 @@ enum class Status {
     InvalidInput,    ///< validation failed (NaN/Inf, lo > hi, bad findex, bad sizes); x is zero
     FrictionNotConsistent,  ///< consistent mode: the outer bound loop ran out of iterations
 };
-const char* to_string(Status s);
+ODE_BPP_API const char* to_string(Status s);
 /// True when x is a usable answer (Converged, FallbackUsed, or an inexact but finite iterate).
-bool is_usable(Status s);
+ODE_BPP_API bool is_usable(Status s);
 
 /// The fallback an answer came through (solver.cpp's chain), if any.
 enum class Fallback : std::int8_t {
@@ -111,7 +113,7 @@ enum class Fallback : std::int8_t {
     RegularizedDantzig,  ///< regularization did not rescue the method either; ODE's Dantzig answered
 };
 /// "none", "regularized", "dantzig", "regularized+dantzig".
-const char* to_string(Fallback f);
+ODE_BPP_API const char* to_string(Fallback f);
 
 /// Per-row state of an index set: the paper's F, T_lo and T_hi.
 enum class RowState : std::int8_t { Free = 0, AtLo = 1, AtHi = 2 };
@@ -256,13 +258,13 @@ struct Result {
 
 /// The residual at or below which an answer is certified (Status::Converged), for every method:
 /// 10 x the classification tolerance, at least 1e-14 (1e-8 by default).
-double certification_level(double tolerance);
+ODE_BPP_API double certification_level(double tolerance);
 
 /// Solves the problem with the chosen method from `start` and writes x (n entries).
 /// Never throws on bad input and never writes non-finite values into x.
-Result solve(const Problem& problem, const Options& options, Strided x, const Start& start = {});
+ODE_BPP_API Result solve(const Problem& problem, const Options& options, Strided x, const Start& start = {});
 
 /// Convenience overload for contiguous x.
-Result solve(const Problem& problem, const Options& options, double* x, const Start& start = {});
+ODE_BPP_API Result solve(const Problem& problem, const Options& options, double* x, const Start& start = {});
 
 }  // namespace ode_bpp

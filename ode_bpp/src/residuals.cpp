@@ -20,17 +20,6 @@ double inf_norm(ConstStrided v, int n) {
     return m;
 }
 
-struct ResidualScratch {
-    std::vector<double> w, scale;
-};
-
-// noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
-// library) at every use inside a loop instead of keeping it (7,000 calls per forklift solve)
-[[gnu::noinline]] ResidualScratch& thread_scratch() {
-    thread_local ResidualScratch scratch;
-    return scratch;
-}
-
 bool is_free(const Problem& p, ConstStrided x, const std::vector<RowState>* states, int i) {
     if (states != nullptr) return (*states)[i] == RowState::Free;
     const auto [lo, hi] = effective_bounds(p, x, i);
@@ -150,17 +139,21 @@ void residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, 
 }
 
 Residuals compute_residuals(const Problem& p, ConstStrided x, const std::vector<RowState>* states) {
-    if (p.sparse != nullptr) return compute_residuals(p, *p.sparse, x, states);
-    ResidualScratch& scratch = thread_scratch();  // capacity kept between solves
-    dense_residual_vectors(p, x, scratch.w, scratch.scale);
-    return summarize(p, DenseDiagonal{p}, x, scratch.w, scratch.scale, states);
+    ResidualBuffers buffers;
+    if (p.sparse != nullptr) return compute_residuals(p, *p.sparse, x, states, buffers);
+    dense_residual_vectors(p, x, buffers.w, buffers.scale);
+    return summarize(p, DenseDiagonal{p}, x, buffers.w, buffers.scale, states);
 }
 
 Residuals compute_residuals(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x,
-                            const std::vector<RowState>* states) {
-    ResidualScratch& scratch = thread_scratch();  // capacity kept between solves
-    residual_vectors(p, A, x, scratch.w, scratch.scale);
-    return summarize(p, [&A](int i) { return A.diag(i); }, x, scratch.w, scratch.scale, states);
+                            const std::vector<RowState>* states, ResidualBuffers& buffers) {
+    residual_vectors(p, A, x, buffers.w, buffers.scale);
+    return summarize(p, [&A](int i) { return A.diag(i); }, x, buffers.w, buffers.scale, states);
+}
+
+Residuals dense_residuals_from(const Problem& p, ConstStrided x, const std::vector<double>& w,
+                               const std::vector<double>& scale, const std::vector<RowState>* states) {
+    return summarize(p, DenseDiagonal{p}, x, w, scale, states);
 }
 
 }  // namespace ode_bpp

@@ -66,10 +66,24 @@ public:
     void to_dense_lower(double* A, int lda) const;
 
 private:
+    /// Buffers of assign and assign_lower, kept with the matrix so that assigning it again
+    /// allocates nothing once they have grown. Not part of the matrix's value: copies start empty.
+    struct BuildBuffers {
+        BuildBuffers() = default;
+        BuildBuffers(const BuildBuffers&) {}
+        BuildBuffers& operator=(const BuildBuffers&) { return *this; }
+        BuildBuffers(BuildBuffers&&) noexcept = default;
+        BuildBuffers& operator=(BuildBuffers&&) noexcept = default;
+        std::vector<int> to_new, count, next;
+        std::vector<LowerEntry> lower;
+        std::vector<double> diagonal;
+    };
+
     int n_ = 0;
     std::vector<double> diag_;
     std::vector<int> rowptr_, col_;
     std::vector<double> val_;
+    BuildBuffers build_;
 };
 
 /// inverse[perm[i]] = i.

@@ -7,8 +7,22 @@
 
 namespace ode_bpp::pivoting {
 
+/// The buffers of the dense refactoring (dense_refactor_solver.cpp), kept by the caller so that
+/// their capacity outlives one solve. One strategy per buffers at a time.
+class DenseRefactorBuffers {
+public:
+    DenseRefactorBuffers();
+    ~DenseRefactorBuffers();
+    struct Vectors;
+    Vectors& vectors() { return *vectors_; }
+
+private:
+    std::unique_ptr<Vectors> vectors_;
+};
+
 /// Alg. 1: gathers A_FF densely and factors it afresh (Eigen LLT) at every step; no L0.
-std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRows& Ap);
+/// buffers: where it works; they must outlive the strategy.
+std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRows& Ap, DenseRefactorBuffers& buffers);
 
 /// How the skyline-based strategies obtain L_FF from L0.
 enum class SkylineVariant {

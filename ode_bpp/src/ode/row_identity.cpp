@@ -6,12 +6,24 @@
 
 namespace ode_bpp {
 
-std::size_t RowKeyHash::operator()(const RowKey& k) const {
+namespace {
+
+void mix(std::size_t& h, std::size_t v) { h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2); }
+
+/// The end of the run of keys from `begin` that belong to one joint.
+std::size_t joint_end(const std::vector<RowKey>& keys, std::size_t begin) {
+    const JointKey joint(keys[begin]);
+    std::size_t end = begin + 1;
+    while (end < keys.size() && JointKey(keys[end]) == joint) ++end;
+    return end;
+}
+
+}  // namespace
+
+std::size_t JointKeyHash::operator()(const JointKey& k) const {
     std::size_t h = std::hash<const void*>()(k.a);
-    auto mix = [&h](std::size_t v) { h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2); };
-    mix(std::hash<const void*>()(k.b));
-    mix(static_cast<std::size_t>(k.ordinal));
-    mix(static_cast<std::size_t>(k.row));
+    mix(h, std::hash<const void*>()(k.b));
+    mix(h, static_cast<std::size_t>(k.ordinal));
     return h;
 }
 
@@ -39,8 +51,8 @@ void RowStateMemory::enter_step(std::uint64_t step) {
     if (steps_ > 0 && step == last_world_step_) return;
     last_world_step_ = step;
     ++steps_;
-    for (auto it = rows_.begin(); it != rows_.end();) {
-        if (steps_ - it->second.seen > kKeepSteps) it = rows_.erase(it);
+    for (auto it = joints_.begin(); it != joints_.end();) {
+        if (steps_ - it->second.seen > kKeepSteps) it = joints_.erase(it);
         else ++it;
     }
 }
@@ -49,11 +61,17 @@ bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step,
     enter_step(step);
     states.assign(keys.size(), RowState::Free);
     bool any = false;
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-        const auto it = rows_.find(keys[i]);
-        if (it == rows_.end()) continue;
-        states[i] = it->second.state;
-        any = true;
+    for (std::size_t begin = 0, end; begin < keys.size(); begin = end) {
+        end = joint_end(keys, begin);
+        const auto it = joints_.find(JointKey(keys[begin]));
+        if (it == joints_.end()) continue;
+        const std::vector<Row>& rows = it->second.rows;
+        for (std::size_t i = begin; i < end; ++i) {
+            const auto r = static_cast<std::size_t>(keys[i].row);
+            if (r >= rows.size() || !is_kept(rows[r])) continue;
+            states[i] = rows[r].state;
+            any = true;
+        }
     }
     return any;
 }
@@ -61,7 +79,23 @@ bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step,
 void RowStateMemory::remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states) {
     if (keys.size() != states.size()) return;
     enter_step(step);
-    for (std::size_t i = 0; i < keys.size(); ++i) rows_[keys[i]] = Entry{states[i], steps_};
+    for (std::size_t begin = 0, end; begin < keys.size(); begin = end) {
+        end = joint_end(keys, begin);
+        Entry& entry = joints_[JointKey(keys[begin])];
+        entry.seen = steps_;
+        for (std::size_t i = begin; i < end; ++i) {
+            const auto r = static_cast<std::size_t>(keys[i].row);
+            if (r >= entry.rows.size()) entry.rows.resize(r + 1);
+            entry.rows[r] = Row{states[i], steps_};
+        }
+    }
+}
+
+std::size_t RowStateMemory::size() const {
+    std::size_t held = 0;
+    for (const auto& [joint, entry] : joints_)
+        for (const Row& row : entry.rows) held += is_kept(row) ? 1 : 0;
+    return held;
 }
 
 }  // namespace ode_bpp

@@ -105,11 +105,11 @@ private:
             ++steps;
             if (!solve_step(states, x)) return false;
             const Infeasibility& inf = classify(states, x);
-            remember_if_best(inf, states);
             if (inf.count() == 0) {
                 orient_pinned_rows(states);
                 return true;
             }
+            remember_if_best(inf, states);  // only Murty's phase reads it, after an infeasible step
             if (inf.count() < least_count) {
                 least_count = inf.count();
                 block_steps_left = std::max(0, o_.tuning.murty_after);

@@ -1,8 +1,7 @@
 #include "ode/row_identity.h"
 
+#include <algorithm>
 #include <functional>
-#include <map>
-#include <utility>
 
 namespace ode_bpp {
 
@@ -27,23 +26,36 @@ std::size_t JointKeyHash::operator()(const JointKey& k) const {
     return h;
 }
 
-void row_keys(const dMLCP& problem, std::vector<RowKey>& keys) {
+namespace {
+
+/// Numbers each contact among the island's contacts of the same geom pair, in joint order:
+/// sorted by pair, stably (joint order holds within a pair), then counted. O(c log c).
+void number_contacts(std::vector<ContactSlot>& contacts) {
+    std::stable_sort(contacts.begin(), contacts.end(), [](const ContactSlot& x, const ContactSlot& y) {
+        return std::less<const void*>()(x.g1, y.g1) || (x.g1 == y.g1 && std::less<const void*>()(x.g2, y.g2));
+    });
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+        const bool same_pair = k > 0 && contacts[k].g1 == contacts[k - 1].g1 && contacts[k].g2 == contacts[k - 1].g2;
+        contacts[k].ordinal = same_pair ? contacts[k - 1].ordinal + 1 : 0;
+    }
+}
+
+}  // namespace
+
+void row_keys(const dMLCP& problem, std::vector<RowKey>& keys, std::vector<ContactSlot>& contacts) {
     keys.assign(static_cast<std::size_t>(problem.m), RowKey{});
-    std::map<std::pair<const void*, const void*>, int> contacts_per_pair;
+    contacts.clear();
+    for (int j = 0; j < problem.nj; ++j)
+        if (const dContactGeom* c = problem.joints[j].contact) contacts.push_back({c->g1, c->g2, j, 0});
+    number_contacts(contacts);
+    for (const ContactSlot& c : contacts) {
+        const dMLCPJoint& joint = problem.joints[c.joint];
+        for (int r = 0; r < joint.m; ++r) keys[static_cast<std::size_t>(joint.row + r)] = {c.g1, c.g2, c.ordinal, r};
+    }
     for (int j = 0; j < problem.nj; ++j) {
         const dMLCPJoint& joint = problem.joints[j];
-        RowKey key;
-        if (joint.contact != nullptr) {
-            key.a = joint.contact->g1;
-            key.b = joint.contact->g2;
-            key.ordinal = contacts_per_pair[{key.a, key.b}]++;
-        } else {
-            key.a = joint.joint;
-        }
-        for (int r = 0; r < joint.m; ++r) {
-            key.row = r;
-            keys[static_cast<std::size_t>(joint.row + r)] = key;
-        }
+        if (joint.contact != nullptr) continue;
+        for (int r = 0; r < joint.m; ++r) keys[static_cast<std::size_t>(joint.row + r)] = {joint.joint, nullptr, 0, r};
     }
 }
 

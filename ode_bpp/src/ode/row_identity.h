@@ -38,8 +38,17 @@ struct JointKeyHash {
     std::size_t operator()(const JointKey& k) const;
 };
 
-/// keys[i] = identity of island row i (original row order). keys: output, m entries.
-void row_keys(const dMLCP& problem, std::vector<RowKey>& keys);
+/// A contact joint of an island and its ordinal among the island's contacts of the same geom pair.
+struct ContactSlot {
+    const void* g1 = nullptr;
+    const void* g2 = nullptr;
+    int joint = 0;
+    std::int32_t ordinal = 0;
+};
+
+/// keys[i] = identity of island row i (original row order). keys: output, m entries; contacts:
+/// buffer reused from call to call (no allocation once it has grown).
+void row_keys(const dMLCP& problem, std::vector<RowKey>& keys, std::vector<ContactSlot>& contacts);
 
 /// The index sets of the most recent steps, by row identity.
 ///

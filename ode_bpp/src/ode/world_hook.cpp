@@ -99,6 +99,7 @@ const char* fallback_name(const Result& r) {
 /// What the hook works in besides the solver's Workspace, reused from island to island.
 struct IslandScratch {
     std::vector<RowKey> keys;
+    std::vector<ContactSlot> contacts;
     OrderingCache::Signature structure;
     ode::IslandView view;
     Start start;
@@ -118,7 +119,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     std::vector<RowKey>& keys = scratch.keys;
     OrderingCache::Signature& structure = scratch.structure;
     if (problem->joints != nullptr) {
-        row_keys(*problem, keys);
+        row_keys(*problem, keys, scratch.contacts);
         if (!keys.empty()) OrderingCache::signature(*problem, keys.front(), structure);
     }
     const bool known_rows = problem->joints != nullptr && !keys.empty();

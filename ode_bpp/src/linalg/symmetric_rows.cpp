@@ -142,12 +142,17 @@ void SymmetricRows::multiply_with_scale(const double* x, double shift, double* y
 }
 
 std::vector<int> SymmetricRows::row_profile() const {
-    std::vector<int> first(static_cast<std::size_t>(n_));
+    std::vector<int> first;
+    row_profile(first);
+    return first;
+}
+
+void SymmetricRows::row_profile(std::vector<int>& first) const {
+    first.resize(static_cast<std::size_t>(n_));
     for (int i = 0; i < n_; ++i) {
         first[i] = i;
         for (int k = rowptr_[i]; k < rowptr_[i + 1]; ++k) first[i] = std::min(first[i], col_[k]);
     }
-    return first;
 }
 
 std::vector<int> SymmetricRows::row_profile_under(const std::vector<int>& perm) const {

@@ -59,6 +59,8 @@ public:
     void multiply_with_scale(const double* x, double shift, double* y, double* scale) const;
     /// Row profile of the lower triangle: first[i] = min({i} U {j < i : Ap(i,j) != 0}).
     std::vector<int> row_profile() const;
+    /// The same into first (n entries, its storage reused).
+    void row_profile(std::vector<int>& first) const;
     /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.
     std::vector<int> row_profile_under(const std::vector<int>& perm) const;
     /// The lower triangle, diagonal included, as a dense row-major n x n array with row stride

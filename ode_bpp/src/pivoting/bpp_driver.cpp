@@ -135,7 +135,7 @@ std::vector<char> tight_set(const std::vector<RowState>& states) {
 struct BppWorkspace::Buffers {
     PermutedProblem problem;
     LoopWorkspace loop;
-    DenseRefactorBuffers dense;
+    StrategyBuffers strategies;
 };
 
 BppWorkspace::BppWorkspace() : buffers_(std::make_unique<Buffers>()) {}
@@ -146,7 +146,8 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     const Method strategy = strategy_of(problem, options);
     PermutedProblem& q = workspace.buffers().problem;
     order(problem, A, options, start, strategy, q);
-    q.solver = make_free_solver(strategy, *q.A, workspace.buffers().dense);
+    q.solver.reset();  // the previous solve's strategy works in the buffers the next one takes
+    q.solver = make_free_solver(strategy, *q.A, workspace.buffers().strategies);
     if (!q.solver) {
         x.assign(static_cast<std::size_t>(problem.n), 0.0);
         Result r;

@@ -11,7 +11,7 @@
 
 namespace ode_bpp::pivoting {
 
-/// The buffers of solve_bpp (bpp_driver.cpp: the permuted problem, the factor strategy's and the
+/// The buffers of solve_bpp (bpp_driver.cpp: the permuted problem, the factor strategies' and the
 /// pivoting loop's), kept by the caller so that their capacity outlives one solve. One solve per
 /// workspace at a time.
 class BppWorkspace {

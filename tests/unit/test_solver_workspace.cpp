@@ -68,7 +68,7 @@ std::vector<Answer> solve_all(const std::vector<problems::OwnedProblem>& islands
         for (const auto& p : islands) {
             std::vector<double> x(p.n);
             const Result r = workspace ? solve(p, o, Strided{x.data(), 1}, {}, *workspace) : solve(p, o, x.data());
-            answers.push_back({r.status, r.pivots, x});
+            answers.push_back({r.status, r.pivoting.pivots, x});
         }
     return answers;
 }

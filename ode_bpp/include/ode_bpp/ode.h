@@ -65,15 +65,5 @@ void island_matrix_lower(const dMLCP& island, std::vector<double>& A);
 /// process creates many worlds; stale state is harmless otherwise).
 void forget_world(dWorldID world);
 
-/// Counts of the hook since the process started, over all worlds.
-struct HookCounters {
-    long islands = 0;               ///< islands solved by an ode-bpp solver
-    long warm_started = 0;          ///< of which started from a previous index set
-    long converged = 0;             ///< Status::Converged
-    long fallbacks = 0;             ///< answered by a fallback (Status::FallbackUsed)
-    long failures = 0;              ///< returned dMLCPFailed: ODE's Dantzig answered
-};
-HookCounters hook_counters();
-
 }  // namespace ode_bpp
 #endif

@@ -20,20 +20,25 @@ double inf_norm(ConstStrided v, int n) {
     return m;
 }
 
-struct ResidualScratch {
-    std::vector<double> w, scale;
-};
+// The definitions of is_unbounded_friction_row and effective_bounds, here so that the residual
+// loops inline them.
+bool unbounded_friction_row(const Problem& p, int i) {
+    return i >= p.nub && p.findex != nullptr && p.findex[i] >= 0 && p.hi[i] == kInf;
+}
 
-// noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
-// library) at every use inside a loop instead of keeping it (7,000 calls per forklift solve)
-[[gnu::noinline]] ResidualScratch& thread_scratch() {
-    thread_local ResidualScratch scratch;
-    return scratch;
+std::pair<double, double> bounds_at(const Problem& p, ConstStrided x, int i) {
+    if (i < p.nub || unbounded_friction_row(p, i)) return {-kInf, kInf};
+    if (p.findex != nullptr && p.findex[i] >= 0) {
+        const double normal = x[p.findex[i]];
+        const double bound = normal == 0 ? 0.0 : std::abs(p.hi[i] * normal);
+        return {-bound, bound};
+    }
+    return {p.lo[i], p.hi[i]};
 }
 
 bool is_free(const Problem& p, ConstStrided x, const std::vector<RowState>* states, int i) {
     if (states != nullptr) return (*states)[i] == RowState::Free;
-    const auto [lo, hi] = effective_bounds(p, x, i);
+    const auto [lo, hi] = bounds_at(p, x, i);
     return lo < x[i] && x[i] < hi;
 }
 
@@ -54,7 +59,7 @@ double row_scale(const Problem& p, Diagonal diag, const std::vector<double>& sca
 /// The bounds of row i in the fixed-bound problem x implies (Residuals::fixed_bound): +-|x_i| for a
 /// bounded friction row, `bounds` (its effective bounds) for any other row.
 std::pair<double, double> implied_bounds(const Problem& p, ConstStrided x, int i, std::pair<double, double> bounds) {
-    if (p.findex == nullptr || p.findex[i] < 0 || i < p.nub || is_unbounded_friction_row(p, i)) return bounds;
+    if (p.findex == nullptr || p.findex[i] < 0 || i < p.nub || unbounded_friction_row(p, i)) return bounds;
     return {-std::abs(x[i]), std::abs(x[i])};
 }
 
@@ -64,15 +69,18 @@ Residuals summarize(const Problem& p, Diagonal diag, ConstStrided x, const std::
                     const std::vector<double>& scale, const std::vector<RowState>* states) {
     Residuals r;
     for (int i = 0; i < p.n; ++i) {
-        const auto bounds = effective_bounds(p, x, i);
-        r.natural = std::max(r.natural, std::abs(x[i] - clamp_to(x[i] - w[i], bounds)));
-        const double scaled = std::abs(x[i] - clamp_to(x[i] - w[i] / diag(i), bounds));
-        if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled / row_scale(p, diag, scale, i));
+        const auto bounds = bounds_at(p, x, i);
+        const double step = x[i] - w[i], scaled_step = x[i] - w[i] / diag(i);
+        r.natural = std::max(r.natural, std::abs(x[i] - clamp_to(step, bounds)));
+        const double scaled = std::abs(x[i] - clamp_to(scaled_step, bounds));
         const auto implied = implied_bounds(p, x, i, bounds);
-        r.fixed_bound = std::max(r.fixed_bound, std::abs(x[i] - clamp_to(x[i] - w[i], implied)));
-        const double scaled_fixed = std::abs(x[i] - clamp_to(x[i] - w[i] / diag(i), implied));
-        if (scaled_fixed > 0)
-            r.scaled_fixed_bound = std::max(r.scaled_fixed_bound, scaled_fixed / row_scale(p, diag, scale, i));
+        r.fixed_bound = std::max(r.fixed_bound, std::abs(x[i] - clamp_to(step, implied)));
+        const double scaled_fixed = std::abs(x[i] - clamp_to(scaled_step, implied));
+        if (scaled > 0 || scaled_fixed > 0) {
+            const double s_i = row_scale(p, diag, scale, i);
+            if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled / s_i);
+            if (scaled_fixed > 0) r.scaled_fixed_bound = std::max(r.scaled_fixed_bound, scaled_fixed / s_i);
+        }
         if (is_free(p, x, states, i)) r.free = std::max(r.free, std::abs(w[i]));
         if (p.findex != nullptr && p.findex[i] >= 0)
             r.friction = std::max(r.friction, std::abs(x[i]) - bounds.second);
@@ -113,19 +121,9 @@ void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double
 
 }  // namespace
 
-bool is_unbounded_friction_row(const Problem& p, int i) {
-    return i >= p.nub && p.findex != nullptr && p.findex[i] >= 0 && p.hi[i] == kInf;
-}
+bool is_unbounded_friction_row(const Problem& p, int i) { return unbounded_friction_row(p, i); }
 
-std::pair<double, double> effective_bounds(const Problem& p, ConstStrided x, int i) {
-    if (i < p.nub || is_unbounded_friction_row(p, i)) return {-kInf, kInf};
-    if (p.findex != nullptr && p.findex[i] >= 0) {
-        const double normal = x[p.findex[i]];
-        const double bound = normal == 0 ? 0.0 : std::abs(p.hi[i] * normal);
-        return {-bound, bound};
-    }
-    return {p.lo[i], p.hi[i]};
-}
+std::pair<double, double> effective_bounds(const Problem& p, ConstStrided x, int i) { return bounds_at(p, x, i); }
 
 void residual_vectors(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x, std::vector<double>& w,
                       std::vector<double>& scale) {
@@ -150,17 +148,21 @@ void residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, 
 }
 
 Residuals compute_residuals(const Problem& p, ConstStrided x, const std::vector<RowState>* states) {
-    if (p.sparse != nullptr) return compute_residuals(p, *p.sparse, x, states);
-    ResidualScratch& scratch = thread_scratch();  // capacity kept between solves
-    dense_residual_vectors(p, x, scratch.w, scratch.scale);
-    return summarize(p, DenseDiagonal{p}, x, scratch.w, scratch.scale, states);
+    ResidualBuffers buffers;
+    if (p.sparse != nullptr) return compute_residuals(p, *p.sparse, x, states, buffers);
+    dense_residual_vectors(p, x, buffers.w, buffers.scale);
+    return summarize(p, DenseDiagonal{p}, x, buffers.w, buffers.scale, states);
 }
 
 Residuals compute_residuals(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x,
-                            const std::vector<RowState>* states) {
-    ResidualScratch& scratch = thread_scratch();  // capacity kept between solves
-    residual_vectors(p, A, x, scratch.w, scratch.scale);
-    return summarize(p, [&A](int i) { return A.diag(i); }, x, scratch.w, scratch.scale, states);
+                            const std::vector<RowState>* states, ResidualBuffers& buffers) {
+    residual_vectors(p, A, x, buffers.w, buffers.scale);
+    return summarize(p, [&A](int i) { return A.diag(i); }, x, buffers.w, buffers.scale, states);
+}
+
+Residuals dense_residuals_from(const Problem& p, ConstStrided x, const std::vector<double>& w,
+                               const std::vector<double>& scale, const std::vector<RowState>* states) {
+    return summarize(p, DenseDiagonal{p}, x, w, scale, states);
 }
 
 }  // namespace ode_bpp

@@ -9,9 +9,22 @@
 
 namespace ode_bpp {
 
+/// w = A x - b and the row scales |A||x| + |b| of one answer (ode_bpp/residuals.h), n entries
+/// each; kept by the caller so that their capacity outlives a solve.
+struct ResidualBuffers {
+    std::vector<double> w, scale;
+};
+
 /// As compute_residuals(problem, x, states); A: linalg::SymmetricRows(problem, {}) (original order).
+/// buffers: scratch, left holding w and scale of x.
 Residuals compute_residuals(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x,
-                            const std::vector<RowState>* states);
+                            const std::vector<RowState>* states, ResidualBuffers& buffers);
+
+/// The residuals of x on a problem in the dense form (Problem::A) from its w = A x - b and row
+/// scales as residual_vectors computes them (e.g. kept by a pivoting loop at its answer): the
+/// same values as compute_residuals(problem, x, states), without its O(n^2) pass.
+Residuals dense_residuals_from(const Problem& problem, ConstStrided x, const std::vector<double>& w,
+                               const std::vector<double>& scale, const std::vector<RowState>* states);
 
 /// As residual_vectors(problem, x, w, scale), from A = linalg::SymmetricRows(problem, {}).
 void residual_vectors(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x, std::vector<double>& w,

@@ -40,6 +40,7 @@
 #include "linalg/symmetric_rows.h"
 #include "residuals.h"
 #include "unbounded_friction.h"
+#include "workspace_parts.h"
 
 namespace ode_bpp {
 
@@ -117,8 +118,8 @@ Result run_pgs(const Problem& p, const linalg::SymmetricRows& A, const Options& 
 }
 
 Result dispatch(const Problem& p, const linalg::SymmetricRows& A, const Options& o, const Start& start,
-                std::vector<double>& x) {
-    if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, start, x);
+                std::vector<double>& x, pivoting::BppWorkspace& bpp) {
+    if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, start, x, bpp);
     if (o.method == Method::Dantzig) return run_dantzig(p, A, x);
     return run_pgs(p, A, o, x);
 }
@@ -193,34 +194,28 @@ void agree_with_residual(const Options& o, Result& r) {
     }
 }
 
-void fill_residuals(const Problem& p, const linalg::SymmetricRows& A, Result& r, const std::vector<double>& x) {
-    r.residuals = compute_residuals(p, A, ConstStrided{x.data(), 1}, r.states.empty() ? nullptr : &r.states);
-}
-
-// noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
-// library) at every use inside a loop instead of keeping it (7,000 calls per forklift solve)
-[[gnu::noinline]] linalg::SymmetricRows& thread_rows() {
-    thread_local linalg::SymmetricRows rows;
-    return rows;
+void fill_residuals(const Problem& p, const linalg::SymmetricRows& A, Result& r, const std::vector<double>& x,
+                    ResidualBuffers& buffers) {
+    r.residuals = compute_residuals(p, A, ConstStrided{x.data(), 1}, r.states.empty() ? nullptr : &r.states, buffers);
 }
 
 /// A as compressed rows in original order: the caller's sparse A as it is, or the dense lower
-/// triangle read once (the only O(n^2) pass of a dense problem) into storage kept per thread.
-const linalg::SymmetricRows& rows_of(const Problem& problem) {
+/// triangle read once (the only O(n^2) pass of a dense problem) into rows (storage reused).
+const linalg::SymmetricRows& rows_of(const Problem& problem, linalg::SymmetricRows& rows) {
     if (problem.sparse != nullptr) return *problem.sparse;
-    linalg::SymmetricRows& rows = thread_rows();
     rows.assign(problem, {});
     return rows;
 }
 
 /// The small-island path (pivoting/small_island.h); true when it answered, with r complete and
 /// x written. answer: scratch, n entries.
-bool solve_small(const Problem& problem, const Options& options, const Start& start, std::vector<double>& answer,
-                 Result& r, Strided x) {
-    if (!pivoting::solve_small_island(problem, options, start, answer, r)) return false;
+bool solve_small(const Problem& problem, const Options& options, const Start& start, pivoting::SmallIslandBuffers& buffers,
+                 std::vector<double>& answer, Result& r, Strided x) {
+    Residuals residuals;
+    if (!pivoting::solve_small_island(problem, options, start, buffers, answer, r, residuals)) return false;
     r.method = options.method;
     r.friction = options.friction;
-    r.residuals = compute_residuals(problem, ConstStrided{answer.data(), 1}, &r.states);
+    r.residuals = residuals;
     agree_with_residual(options, r);
     for (int i = 0; i < problem.n; ++i) x[i] = answer[i];
     return true;
@@ -232,12 +227,6 @@ ValidationResult validate_call(const Problem& problem, const Options& options, c
     if (v.valid && !(options.tolerance >= 0 && std::isfinite(options.tolerance)))
         v = {false, "tolerance must be finite and >= 0"};
     return v;
-}
-
-// noinline: as thread_rows()
-[[gnu::noinline]] UnboundedFriction& thread_unbounded_friction() {
-    thread_local UnboundedFriction storage;
-    return storage;
 }
 
 Result invalid_input(const Problem& p, Strided x, std::string message) {
@@ -307,20 +296,21 @@ bool is_usable(Status s) {
 
 double certification_level(double tolerance) { return std::max(kCertificationFactor * tolerance, kCertificationFloor); }
 
-Result solve(const Problem& caller_problem, const Options& options, Strided x, const Start& start) {
+Result solve(const Problem& caller_problem, const Options& options, Strided x, const Start& start, Workspace& workspace) {
     if (x.data == nullptr || x.stride < 1) {
         Result r = invalid_input(caller_problem, x, "x is null or has a stride < 1");
         r.method = options.method;
         r.friction = options.friction;
         return r;
     }
+    Workspace::Parts& parts = workspace.parts();
     ValidationResult v = validate_call(caller_problem, options, start);
     const Problem problem = v.valid && has_unbounded_friction(caller_problem)
-                                ? thread_unbounded_friction().view(caller_problem)
+                                ? parts.unbounded_friction.view(caller_problem)
                                 : caller_problem;
     const bool small = v.valid && pivoting::takes_small_island(problem, options);
     if (small) v = validate_matrix(problem);
-    const linalg::SymmetricRows* A = v.valid && !small ? &rows_of(problem) : nullptr;
+    const linalg::SymmetricRows* A = v.valid && !small ? &rows_of(problem, parts.rows) : nullptr;
     if (A != nullptr) v = validate_matrix(*A);
     if (!v.valid) {
         Result r = invalid_input(problem, problem.n > 0 ? x : Strided{}, v.message);
@@ -328,16 +318,16 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
         r.friction = options.friction;
         return r;
     }
-    std::vector<double> answer;
+    std::vector<double>& answer = parts.answer;
     Result small_attempt;
-    if (small && solve_small(problem, options, start, answer, small_attempt, x)) return small_attempt;
-    if (A == nullptr) A = &rows_of(problem);
-    Result r = dispatch(problem, *A, options, start, answer);
+    if (small && solve_small(problem, options, start, parts.small_island, answer, small_attempt, x)) return small_attempt;
+    if (A == nullptr) A = &rows_of(problem, parts.rows);
+    Result r = dispatch(problem, *A, options, start, answer, parts.bpp);
     r.method = options.method;
     r.friction = options.friction;
     r.pivoting.pivots += small_attempt.pivoting.pivots;  // the steps of a small-island attempt that did not finish
     apply_fallbacks(problem, *A, options, r, answer);
-    fill_residuals(problem, *A, r, answer);
+    fill_residuals(problem, *A, r, answer, parts.residuals);
     agree_with_residual(options, r);
     if (!is_bpp(options.method)) r.factor_error = std::numeric_limits<double>::quiet_NaN();
     if (r.status != Status::Converged && r.message.empty()) r.message = to_string(r.status);
@@ -345,8 +335,12 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
     return r;
 }
 
+Result solve(const Problem& problem, const Options& options, Strided x, const Start& start) {
+    return solve(problem, options, x, start, thread_workspace());
+}
+
 Result solve(const Problem& problem, const Options& options, double* x, const Start& start) {
-    return solve(problem, options, Strided{x, 1}, start);
+    return solve(problem, options, Strided{x, 1}, start, thread_workspace());
 }
 
 }  // namespace ode_bpp

@@ -160,7 +160,8 @@ TEST(PivotingLoop, ARunThatMayStallStopsAtTheFirstRevisitedIndexSet) {
     const auto owned = problems::block_pivoting_cycle();
     const pivoting::test::DriverLcp driver(owned.view());
     const pivoting::BoxedLcp& lcp = driver.lcp;
-    auto solver = pivoting::make_dense_refactor_solver(driver.A);
+    pivoting::DenseRefactorBuffers buffers;  // outlives the strategy
+    auto solver = pivoting::make_dense_refactor_solver(driver.A, buffers);
     ASSERT_TRUE(solver->prepare(0));
     pivoting::PivotSettings settings;
     settings.max_pivots = 200;
@@ -190,7 +191,8 @@ TEST(PivotingLoop, DirectCallLeavesTheFinalIndexSetAndCountsSteps) {
     const Problem p = owned.view();
     const pivoting::test::DriverLcp driver(p);
     const pivoting::BoxedLcp& lcp = driver.lcp;
-    auto solver = pivoting::make_dense_refactor_solver(driver.A);
+    pivoting::DenseRefactorBuffers buffers;  // outlives the strategy
+    auto solver = pivoting::make_dense_refactor_solver(driver.A, buffers);
     ASSERT_TRUE(solver->prepare(0));
     std::vector<RowState> states;
     std::vector<double> x;
@@ -215,7 +217,8 @@ TEST(PivotingPolish, TheToleranceAloneKeepsOpposedFrictionAtItsBoundsAndThePolis
     const auto owned = problems::opposed_friction_pair();
     const pivoting::test::DriverLcp driver(owned.view());  // friction bounds fixed at +-mu
     const pivoting::BoxedLcp& lcp = driver.lcp;
-    auto solver = pivoting::make_dense_refactor_solver(driver.A);
+    pivoting::DenseRefactorBuffers buffers;  // outlives the strategy
+    auto solver = pivoting::make_dense_refactor_solver(driver.A, buffers);
     ASSERT_TRUE(solver->prepare(0));
     const std::vector<RowState> opposed = {RowState::Free, RowState::AtHi, RowState::Free, RowState::AtLo};
     for (bool polish : {false, true}) {

@@ -84,7 +84,8 @@ class PivotingStrategy : public ::testing::TestWithParam<Method> {};
 void check_sequence(Method m, problems::OwnedProblem owned, std::uint64_t seed) {
     const Permuted pp = permuted_for(m, std::move(owned));
     const Eigen::MatrixXd A = dense(pp.Ap);
-    auto solver = make_free_solver(m, pp.Ap);
+    StrategyBuffers buffers;  // outlives the strategy
+    auto solver = make_free_solver(m, pp.Ap, buffers);
     ASSERT_TRUE(solver);
     ASSERT_TRUE(solver->prepare(0));
     const int n = pp.Ap.n();
@@ -111,7 +112,8 @@ TEST_P(PivotingStrategy, SolvesEveryTightSetOfADenseMatrix) {
 
 TEST_P(PivotingStrategy, FactorErrorIsSmallWhereDefined) {
     const Permuted pp = permuted_for(GetParam(), problems::chain_mlcp(20, 8));
-    auto solver = make_free_solver(GetParam(), pp.Ap);
+    StrategyBuffers buffers;  // outlives the strategy
+    auto solver = make_free_solver(GetParam(), pp.Ap, buffers);
     ASSERT_TRUE(solver->prepare(0));
     const auto tight = tight_set_sequence(pp.Ap.n(), 5)[4];
     const double e = solver->factor_error(tight);
@@ -127,7 +129,8 @@ TEST_P(PivotingStrategy, FactorErrorIsSmallWhereDefined) {
 TEST_P(PivotingStrategy, SingularMatrixBreaksDown) {
     const auto owned = problems::duplicated_rows();
     const linalg::SymmetricRows A(owned.view(), {});
-    auto solver = make_free_solver(GetParam(), A);
+    StrategyBuffers buffers;  // outlives the strategy
+    auto solver = make_free_solver(GetParam(), A, buffers);
     std::vector<char> none(3, 0);
     std::vector<double> x = {1, 1, 1};
     const bool prepared = solver->prepare(0);
@@ -153,7 +156,8 @@ INSTANTIATE_TEST_SUITE_P(AllStrategies, PivotingStrategy, ::testing::ValuesIn(kB
 
 TEST(PivotingCostModel, DeletesFewLateRowsAndRefactorsManyEarlyOnes) {
     const Permuted pp = permuted_for(Method::Bpp, problems::chain_mlcp(40, 20));
-    auto solver = make_free_solver(Method::Bpp, pp.Ap);
+    StrategyBuffers buffers;  // outlives the strategy
+    auto solver = make_free_solver(Method::Bpp, pp.Ap, buffers);
     ASSERT_TRUE(solver->prepare(0));
     const int n = pp.Ap.n();
     std::vector<double> x(n, 1.0);
@@ -168,7 +172,8 @@ TEST(PivotingCostModel, DeletesFewLateRowsAndRefactorsManyEarlyOnes) {
 TEST(PivotingCostModel, PaperVariantsAlwaysDelete) {
     for (Method m : {Method::BppDown, Method::BppSky}) {
         const Permuted pp = permuted_for(m, problems::chain_mlcp(15, 6));
-        auto solver = make_free_solver(m, pp.Ap);
+        StrategyBuffers buffers;  // outlives the strategy
+        auto solver = make_free_solver(m, pp.Ap, buffers);
         ASSERT_TRUE(solver->prepare(0));
         std::vector<char> many(pp.Ap.n(), 0);
         for (int i = 0; i < pp.Ap.n(); i += 2) many[i] = 1;

@@ -17,6 +17,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ode_bpp/workspace.h"
+
 namespace ode_bpp {
 
 /// A read-only strided vector, so that ODE's interleaved pairs (b at [2i], x at [2i+1])
@@ -260,11 +262,17 @@ struct Result {
 /// 10 x the classification tolerance, at least 1e-14 (1e-8 by default).
 ODE_BPP_API double certification_level(double tolerance);
 
-/// Solves the problem with the chosen method from `start` and writes x (n entries).
+/// Solves the problem with the chosen method from `start` and writes x (n entries), working in
+/// `workspace` (one solve per workspace at a time; ode_bpp/workspace.h).
 /// Never throws on bad input and never writes non-finite values into x.
+ODE_BPP_API Result solve(const Problem& problem, const Options& options, Strided x, const Start& start,
+                         Workspace& workspace);
+
+/// The same in the calling thread's own workspace (one per thread, kept for the thread's
+/// lifetime): safe from any number of threads at once, but not from inside a solve.
 ODE_BPP_API Result solve(const Problem& problem, const Options& options, Strided x, const Start& start = {});
 
-/// Convenience overload for contiguous x.
+/// Convenience overload for contiguous x, in the calling thread's workspace.
 ODE_BPP_API Result solve(const Problem& problem, const Options& options, double* x, const Start& start = {});
 
 }  // namespace ode_bpp

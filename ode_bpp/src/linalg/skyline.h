@@ -40,6 +40,9 @@ class SkylineMatrix {
 public:
     SkylineMatrix() = default;
     explicit SkylineMatrix(SkylineShape shape);
+    /// The zero matrix of this shape, reusing this object's storage (no allocation once it has
+    /// held a shape as large).
+    void reset(const SkylineShape& shape);
 
     int n() const { return shape_.n; }
     const SkylineShape& shape() const { return shape_; }

@@ -6,23 +6,6 @@
 
 namespace ode_bpp::linalg {
 
-namespace {
-
-struct Scratch {
-    std::vector<int> to_new, count, next;
-    std::vector<LowerEntry> lower;
-    std::vector<double> diagonal;
-};
-
-// noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
-// library) at every use inside a loop instead of keeping it (7,000 calls per forklift solve)
-[[gnu::noinline]] Scratch& thread_scratch() {
-    thread_local Scratch scratch;
-    return scratch;
-}
-
-}  // namespace
-
 std::vector<int> inverse_permutation(const std::vector<int>& perm) {
     std::vector<int> inverse(perm.size());
     for (std::size_t i = 0; i < perm.size(); ++i) inverse[perm[i]] = static_cast<int>(i);
@@ -37,15 +20,13 @@ void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
         else p.sparse->permute_into(perm, *this);
         return;
     }
-    // scratch that keeps its capacity from one island to the next (allocation dominated small islands)
-    Scratch& scratch = thread_scratch();
-    std::vector<int>& to_new = scratch.to_new;
-    std::vector<LowerEntry>& lower = scratch.lower;  // one pass over the dense triangle; A is mostly zeros
+    std::vector<int>& to_new = build_.to_new;
+    std::vector<LowerEntry>& lower = build_.lower;  // one pass over the dense triangle; A is mostly zeros
     to_new.resize(static_cast<std::size_t>(p.n));
     if (perm.empty()) std::iota(to_new.begin(), to_new.end(), 0);
     else
         for (int i = 0; i < p.n; ++i) to_new[perm[i]] = i;
-    std::vector<double>& diagonal = scratch.diagonal;
+    std::vector<double>& diagonal = build_.diagonal;
     diagonal.assign(static_cast<std::size_t>(p.n), 0.0);
     lower.clear();
     for (int i = 0; i < p.n; ++i) {
@@ -66,8 +47,7 @@ void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
 void SymmetricRows::assign_lower(std::vector<double>& diagonal, const std::vector<LowerEntry>& lower) {
     n_ = static_cast<int>(diagonal.size());
     diag_.swap(diagonal);
-    Scratch& scratch = thread_scratch();
-    std::vector<int>&count = scratch.count, &next = scratch.next;
+    std::vector<int>&count = build_.count, &next = build_.next;
     count.assign(static_cast<std::size_t>(n_), 0);
     for (const LowerEntry& e : lower) {
         ++count[e.row];
@@ -104,7 +84,9 @@ SymmetricRows SymmetricRows::permuted(const std::vector<int>& perm) const {
 }
 
 void SymmetricRows::permute_into(const std::vector<int>& perm, SymmetricRows& out) const {
-    const std::vector<int> to_new = inverse_permutation(perm);
+    std::vector<int>& to_new = out.build_.to_new;
+    to_new.resize(perm.size());
+    for (std::size_t i = 0; i < perm.size(); ++i) to_new[perm[i]] = static_cast<int>(i);
     out.n_ = n_;
     out.diag_.resize(diag_.size());
     out.rowptr_.assign(rowptr_.size(), 0);
@@ -160,12 +142,17 @@ void SymmetricRows::multiply_with_scale(const double* x, double shift, double* y
 }
 
 std::vector<int> SymmetricRows::row_profile() const {
-    std::vector<int> first(static_cast<std::size_t>(n_));
+    std::vector<int> first;
+    row_profile(first);
+    return first;
+}
+
+void SymmetricRows::row_profile(std::vector<int>& first) const {
+    first.resize(static_cast<std::size_t>(n_));
     for (int i = 0; i < n_; ++i) {
         first[i] = i;
         for (int k = rowptr_[i]; k < rowptr_[i + 1]; ++k) first[i] = std::min(first[i], col_[k]);
     }
-    return first;
 }
 
 std::vector<int> SymmetricRows::row_profile_under(const std::vector<int>& perm) const {

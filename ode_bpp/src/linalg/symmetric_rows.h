@@ -59,6 +59,8 @@ public:
     void multiply_with_scale(const double* x, double shift, double* y, double* scale) const;
     /// Row profile of the lower triangle: first[i] = min({i} U {j < i : Ap(i,j) != 0}).
     std::vector<int> row_profile() const;
+    /// The same into first (n entries, its storage reused).
+    void row_profile(std::vector<int>& first) const;
     /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.
     std::vector<int> row_profile_under(const std::vector<int>& perm) const;
     /// The lower triangle, diagonal included, as a dense row-major n x n array with row stride
@@ -66,10 +68,24 @@ public:
     void to_dense_lower(double* A, int lda) const;
 
 private:
+    /// Buffers of assign and assign_lower, kept with the matrix so that assigning it again
+    /// allocates nothing once they have grown. Not part of the matrix's value: copies start empty.
+    struct BuildBuffers {
+        BuildBuffers() = default;
+        BuildBuffers(const BuildBuffers&) {}
+        BuildBuffers& operator=(const BuildBuffers&) { return *this; }
+        BuildBuffers(BuildBuffers&&) noexcept = default;
+        BuildBuffers& operator=(BuildBuffers&&) noexcept = default;
+        std::vector<int> to_new, count, next;
+        std::vector<LowerEntry> lower;
+        std::vector<double> diagonal;
+    };
+
     int n_ = 0;
     std::vector<double> diag_;
     std::vector<int> rowptr_, col_;
     std::vector<double> val_;
+    BuildBuffers build_;
 };
 
 /// inverse[perm[i]] = i.

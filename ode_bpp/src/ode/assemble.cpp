@@ -9,11 +9,6 @@ namespace ode_bpp::ode {
 
 namespace {
 
-/// Joints by body: the joints on body b are joints[first[b] .. first[b+1]-1], increasing.
-struct Incidence {
-    std::vector<int> first, joints, next;
-};
-
 void build_incidence(const dMLCP& p, Incidence& inc) {
     inc.first.assign(static_cast<std::size_t>(p.nb) + 1, 0);
     for (int k = 0; k < p.nj; ++k)
@@ -56,13 +51,6 @@ double body_term(const dReal* jinvm, const dReal* j) {
     return sum;
 }
 
-/// The bodies joints p and q share, as pairs of sides (p's side, q's side), p's body[0] first:
-/// the order in which ODE adds their terms.
-struct SharedSides {
-    int count = 0;
-    int p_side[2] = {0, 0}, q_side[2] = {0, 0};
-};
-
 SharedSides shared_sides(const dMLCPJoint& p, const dMLCPJoint& q) {
     SharedSides shared;
     for (int side = 0; side < 2; ++side) {
@@ -74,20 +62,6 @@ SharedSides shared_sides(const dMLCPJoint& p, const dMLCPJoint& q) {
         shared.q_side[shared.count++] = other;
     }
     return shared;
-}
-
-struct Scratch {
-    Incidence incidence;
-    std::vector<int> neighbours;
-    std::vector<SharedSides> sides;
-    std::vector<linalg::LowerEntry> lower;
-    std::vector<double> diagonal;
-};
-
-// noinline: inlined, GCC re-derives a thread_local's address at every use (symmetric_rows.cpp)
-[[gnu::noinline]] Scratch& thread_scratch() {
-    thread_local Scratch scratch;
-    return scratch;
 }
 
 /// Row i of joint p against the rows j of joint q (q == p or earlier) before j_end: the entries
@@ -143,12 +117,11 @@ void assemble_joint(const dMLCP& island, int pj, const std::vector<int>& neighbo
 
 /// Every joint's rows in turn (assemble_joint), against the earlier joints it shares a body with.
 template <typename Keep>
-void assemble_joints(const dMLCP& island, Keep keep) {
-    Scratch& scratch = thread_scratch();
-    build_incidence(island, scratch.incidence);
+void assemble_joints(const dMLCP& island, AssemblyBuffers& buffers, Keep keep) {
+    build_incidence(island, buffers.incidence);
     for (int pj = 0; pj < island.nj; ++pj) {
-        earlier_neighbours(island, scratch.incidence, pj, scratch.neighbours);
-        assemble_joint(island, pj, scratch.neighbours, scratch.sides, keep);
+        earlier_neighbours(island, buffers.incidence, pj, buffers.neighbours);
+        assemble_joint(island, pj, buffers.neighbours, buffers.sides, keep);
     }
 }
 
@@ -159,25 +132,24 @@ bool has_sparse_form(const dMLCP& p) {
            p.m > 0;
 }
 
-void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out) {
-    Scratch& scratch = thread_scratch();
-    std::vector<linalg::LowerEntry>& lower = scratch.lower;
+void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers) {
+    std::vector<linalg::LowerEntry>& lower = buffers.lower;
     lower.clear();
-    std::vector<double>& diagonal = scratch.diagonal;
+    std::vector<double>& diagonal = buffers.diagonal;
     diagonal.resize(static_cast<std::size_t>(island.m));
-    assemble_joints(island, [&lower, &diagonal](int i, int j, double a) {
+    assemble_joints(island, buffers, [&lower, &diagonal](int i, int j, double a) {
         if (j == i) diagonal[i] = a;
         else if (a != 0) lower.push_back({i, j, a});  // exact zeros are not stored, as from the dense A
     });
     out.assign_lower(diagonal, lower);
 }
 
-void assemble_dense_lower(const dMLCP& island, double* A, int lda) {
+void assemble_dense_lower(const dMLCP& island, double* A, int lda, AssemblyBuffers& buffers) {
     for (int i = 0; i < island.m; ++i) {
         double* row = A + static_cast<std::ptrdiff_t>(i) * lda;
         std::fill(row, row + i, 0.0);
     }
-    assemble_joints(island, [A, lda](int i, int j, double a) { A[static_cast<std::ptrdiff_t>(i) * lda + j] = a; });
+    assemble_joints(island, buffers, [A, lda](int i, int j, double a) { A[static_cast<std::ptrdiff_t>(i) * lda + j] = a; });
 }
 
 }  // namespace ode_bpp::ode
@@ -188,7 +160,8 @@ void island_matrix_lower(const dMLCP& island, std::vector<double>& A) {
     const auto m = static_cast<std::size_t>(std::max(island.m, 0));
     A.assign(m * m, 0.0);
     if (ode::has_sparse_form(island)) {
-        ode::assemble_dense_lower(island, A.data(), island.m);
+        ode::AssemblyBuffers buffers;
+        ode::assemble_dense_lower(island, A.data(), island.m, buffers);
         return;
     }
     if (island.A == nullptr) return;

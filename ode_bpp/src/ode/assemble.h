@@ -6,9 +6,33 @@
 
 #include <ode/mlcp.h>
 
+#include <vector>
+
 #include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::ode {
+
+/// Joints by body: the joints on body b are joints[first[b] .. first[b+1]-1], increasing.
+struct Incidence {
+    std::vector<int> first, joints, next;
+};
+
+/// The bodies two joints p and q share, as pairs of sides (p's side, q's side), p's body[0]
+/// first: the order in which ODE adds their terms.
+struct SharedSides {
+    int count = 0;
+    int p_side[2] = {0, 0}, q_side[2] = {0, 0};
+};
+
+/// The buffers of an assembly, kept by the caller (ode/island_view.h) so that assembling the
+/// next island allocates nothing once they have grown. One assembly per buffers at a time.
+struct AssemblyBuffers {
+    Incidence incidence;
+    std::vector<int> neighbours;
+    std::vector<SharedSides> sides;
+    std::vector<linalg::LowerEntry> lower;
+    std::vector<double> diagonal;
+};
 
 /// True when the island comes in the sparse form (J, JinvM, cfm and the joints, A null).
 bool has_sparse_form(const dMLCP& island);
@@ -21,12 +45,12 @@ bool has_sparse_form(const dMLCP& island);
 /// (lower entry (i,j), i > j: row i's JinvM against row j's J, body[0] of row i's joint first,
 /// the diagonal starting from cfm_i), so the rows equal those read from ODE's dense A bit for bit
 /// and both forms give one trajectory. Exact zeros are not stored, as from the dense A.
-/// Island: has_sparse_form. Thread-safe (scratch per thread).
-void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out);
+/// Island: has_sparse_form.
+void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers);
 
 /// The same entries, summed the same way, into a dense lower triangle: A[i * lda + j] for j <= i
 /// (output; the strict upper triangle is not written), lda >= island.m. O(m^2) to clear it, then
 /// O(entries): for small islands (Tuning::dense_island_rows), whose solve reads A densely.
-void assemble_dense_lower(const dMLCP& island, double* A, int lda);
+void assemble_dense_lower(const dMLCP& island, double* A, int lda, AssemblyBuffers& buffers);
 
 }  // namespace ode_bpp::ode

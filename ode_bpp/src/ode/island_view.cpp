@@ -11,11 +11,11 @@ Problem IslandView::of(const dMLCP& p, bool dense_lower) {
     q.lda = p.skip;
     if (has_sparse_form(p) && dense_lower) {
         dense_.resize(static_cast<std::size_t>(p.m) * p.m);
-        assemble_dense_lower(p, dense_.data(), p.m);
+        assemble_dense_lower(p, dense_.data(), p.m, assembly_);
         q.A = dense_.data();
         q.lda = p.m;
     } else if (has_sparse_form(p)) {
-        assemble_rows(p, assembled_);
+        assemble_rows(p, assembled_, assembly_);
         q.sparse = &assembled_;
     }
     q.b = ConstStrided{p.pairsbx, 2};

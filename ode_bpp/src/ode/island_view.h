@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "linalg/symmetric_rows.h"
+#include "ode/assemble.h"
 #include "ode_bpp/solver.h"
 
 namespace ode_bpp::ode {
@@ -29,6 +30,7 @@ private:
     std::vector<int> block_row_, block_body_;
     linalg::SymmetricRows assembled_;
     std::vector<double> dense_;  ///< m x m, row stride m: the lower triangle of a small island
+    AssemblyBuffers assembly_;
 };
 
 /// The first joint whose rows do not continue where the previous joint's ended (joints must tile

@@ -1,37 +1,61 @@
 #include "ode/row_identity.h"
 
+#include <algorithm>
 #include <functional>
-#include <map>
-#include <utility>
 
 namespace ode_bpp {
 
-std::size_t RowKeyHash::operator()(const RowKey& k) const {
+namespace {
+
+void mix(std::size_t& h, std::size_t v) { h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2); }
+
+/// The end of the run of keys from `begin` that belong to one joint.
+std::size_t joint_end(const std::vector<RowKey>& keys, std::size_t begin) {
+    const JointKey joint(keys[begin]);
+    std::size_t end = begin + 1;
+    while (end < keys.size() && JointKey(keys[end]) == joint) ++end;
+    return end;
+}
+
+}  // namespace
+
+std::size_t JointKeyHash::operator()(const JointKey& k) const {
     std::size_t h = std::hash<const void*>()(k.a);
-    auto mix = [&h](std::size_t v) { h ^= v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2); };
-    mix(std::hash<const void*>()(k.b));
-    mix(static_cast<std::size_t>(k.ordinal));
-    mix(static_cast<std::size_t>(k.row));
+    mix(h, std::hash<const void*>()(k.b));
+    mix(h, static_cast<std::size_t>(k.ordinal));
     return h;
 }
 
-void row_keys(const dMLCP& problem, std::vector<RowKey>& keys) {
+namespace {
+
+/// Numbers each contact among the island's contacts of the same geom pair, in joint order:
+/// sorted by pair, stably (joint order holds within a pair), then counted. O(c log c).
+void number_contacts(std::vector<ContactSlot>& contacts) {
+    std::stable_sort(contacts.begin(), contacts.end(), [](const ContactSlot& x, const ContactSlot& y) {
+        return std::less<const void*>()(x.g1, y.g1) || (x.g1 == y.g1 && std::less<const void*>()(x.g2, y.g2));
+    });
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+        const bool same_pair = k > 0 && contacts[k].g1 == contacts[k - 1].g1 && contacts[k].g2 == contacts[k - 1].g2;
+        contacts[k].ordinal = same_pair ? contacts[k - 1].ordinal + 1 : 0;
+    }
+}
+
+}  // namespace
+
+void row_keys(const dMLCP& problem, std::vector<RowKey>& keys, std::vector<ContactSlot>& contacts) {
     keys.assign(static_cast<std::size_t>(problem.m), RowKey{});
-    std::map<std::pair<const void*, const void*>, int> contacts_per_pair;
+    contacts.clear();
+    for (int j = 0; j < problem.nj; ++j)
+        if (const dContactGeom* c = problem.joints[j].contact) contacts.push_back({c->g1, c->g2, j, 0});
+    number_contacts(contacts);
+    for (const ContactSlot& c : contacts) {
+        const dMLCPJoint& joint = problem.joints[c.joint];
+        for (int r = 0; r < joint.m; ++r) keys[static_cast<std::size_t>(joint.row + r)] = {c.g1, c.g2, c.ordinal, r};
+    }
     for (int j = 0; j < problem.nj; ++j) {
         const dMLCPJoint& joint = problem.joints[j];
-        RowKey key;
-        if (joint.contact != nullptr) {
-            key.a = joint.contact->g1;
-            key.b = joint.contact->g2;
-            key.ordinal = contacts_per_pair[{key.a, key.b}]++;
-        } else {
-            key.a = joint.joint;
-        }
-        for (int r = 0; r < joint.m; ++r) {
-            key.row = r;
-            keys[static_cast<std::size_t>(joint.row + r)] = key;
-        }
+        if (joint.contact != nullptr) continue;
+        for (int r = 0; r < joint.m; ++r) keys[static_cast<std::size_t>(joint.row + r)] = {joint.joint, nullptr, 0, r};
     }
 }
 
@@ -39,8 +63,8 @@ void RowStateMemory::enter_step(std::uint64_t step) {
     if (steps_ > 0 && step == last_world_step_) return;
     last_world_step_ = step;
     ++steps_;
-    for (auto it = rows_.begin(); it != rows_.end();) {
-        if (steps_ - it->second.seen > kKeepSteps) it = rows_.erase(it);
+    for (auto it = joints_.begin(); it != joints_.end();) {
+        if (steps_ - it->second.seen > kKeepSteps) it = joints_.erase(it);
         else ++it;
     }
 }
@@ -49,11 +73,17 @@ bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step,
     enter_step(step);
     states.assign(keys.size(), RowState::Free);
     bool any = false;
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-        const auto it = rows_.find(keys[i]);
-        if (it == rows_.end()) continue;
-        states[i] = it->second.state;
-        any = true;
+    for (std::size_t begin = 0, end; begin < keys.size(); begin = end) {
+        end = joint_end(keys, begin);
+        const auto it = joints_.find(JointKey(keys[begin]));
+        if (it == joints_.end()) continue;
+        const std::vector<Row>& rows = it->second.rows;
+        for (std::size_t i = begin; i < end; ++i) {
+            const auto r = static_cast<std::size_t>(keys[i].row);
+            if (r >= rows.size() || !is_kept(rows[r])) continue;
+            states[i] = rows[r].state;
+            any = true;
+        }
     }
     return any;
 }
@@ -61,7 +91,23 @@ bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step,
 void RowStateMemory::remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states) {
     if (keys.size() != states.size()) return;
     enter_step(step);
-    for (std::size_t i = 0; i < keys.size(); ++i) rows_[keys[i]] = Entry{states[i], steps_};
+    for (std::size_t begin = 0, end; begin < keys.size(); begin = end) {
+        end = joint_end(keys, begin);
+        Entry& entry = joints_[JointKey(keys[begin])];
+        entry.seen = steps_;
+        for (std::size_t i = begin; i < end; ++i) {
+            const auto r = static_cast<std::size_t>(keys[i].row);
+            if (r >= entry.rows.size()) entry.rows.resize(r + 1);
+            entry.rows[r] = Row{states[i], steps_};
+        }
+    }
+}
+
+std::size_t RowStateMemory::size() const {
+    std::size_t held = 0;
+    for (const auto& [joint, entry] : joints_)
+        for (const Row& row : entry.rows) held += is_kept(row) ? 1 : 0;
+    return held;
 }
 
 }  // namespace ode_bpp

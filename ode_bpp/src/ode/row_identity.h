@@ -25,14 +25,37 @@ struct RowKey {
     bool operator==(const RowKey& o) const { return a == o.a && b == o.b && ordinal == o.ordinal && row == o.row; }
 };
 
-struct RowKeyHash {
-    std::size_t operator()(const RowKey& k) const;
+/// RowKey without the row: the joint (or contact) the row belongs to.
+struct JointKey {
+    const void* a = nullptr;
+    const void* b = nullptr;
+    std::int32_t ordinal = 0;
+    explicit JointKey(const RowKey& k) : a(k.a), b(k.b), ordinal(k.ordinal) {}
+    bool operator==(const JointKey& o) const { return a == o.a && b == o.b && ordinal == o.ordinal; }
 };
 
-/// keys[i] = identity of island row i (original row order). keys: output, m entries.
-void row_keys(const dMLCP& problem, std::vector<RowKey>& keys);
+struct JointKeyHash {
+    std::size_t operator()(const JointKey& k) const;
+};
+
+/// A contact joint of an island and its ordinal among the island's contacts of the same geom pair.
+struct ContactSlot {
+    const void* g1 = nullptr;
+    const void* g2 = nullptr;
+    int joint = 0;
+    std::int32_t ordinal = 0;
+};
+
+/// keys[i] = identity of island row i (original row order). keys: output, m entries; contacts:
+/// buffer reused from call to call (no allocation once it has grown).
+void row_keys(const dMLCP& problem, std::vector<RowKey>& keys, std::vector<ContactSlot>& contacts);
 
 /// The index sets of the most recent steps, by row identity.
+///
+/// Stored per joint: the rows of a joint come as consecutive keys, and one hash lookup serves
+/// them all (a lookup per row cost more than a small island's factorization). Each row keeps
+/// its own age, so a row that a joint drops for a step (a limit that lets go) is recalled as if
+/// it were stored alone.
 ///
 /// Ageing counts world steps (dMLCP::step), never calls: the islands of one step are solved in
 /// any order, or concurrently, and what an island recalls must not depend on which of its
@@ -49,18 +72,24 @@ public:
     bool recall(const std::vector<RowKey>& keys, std::uint64_t step, std::vector<RowState>& states);
     /// Stores the final index set of an island solved in world step `step`.
     void remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states);
-    std::size_t size() const { return rows_.size(); }
+    /// Rows held (stored within the last kKeepSteps steps).
+    std::size_t size() const;
 
 private:
+    struct Row {
+        RowState state = RowState::Free;
+        std::uint64_t seen = 0;  ///< steps_ when stored; 0: never
+    };
     struct Entry {
-        RowState state;
-        std::uint64_t seen;  ///< steps_ when stored
+        std::vector<Row> rows;   ///< by row within the joint
+        std::uint64_t seen = 0;  ///< the newest of the rows' seen
     };
     /// Counts a new step when `step` differs from the last one seen (a reset counts too), and
-    /// drops the entries older than kKeepSteps.
+    /// drops the joints whose rows are all older than kKeepSteps.
     void enter_step(std::uint64_t step);
+    bool is_kept(const Row& row) const { return row.seen != 0 && steps_ - row.seen <= kKeepSteps; }
 
-    std::unordered_map<RowKey, Entry, RowKeyHash> rows_;
+    std::unordered_map<JointKey, Entry, JointKeyHash> joints_;
     std::uint64_t last_world_step_ = 0;
     std::uint64_t steps_ = 0;  ///< distinct world steps seen so far
 };

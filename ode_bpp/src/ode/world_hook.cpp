@@ -95,19 +95,36 @@ const char* fallback_name(const Result& r) {
     return r.fallback == Fallback::None ? nullptr : to_string(r.fallback);
 }
 
+/// What the hook works in besides the solver's Workspace, reused from island to island.
+struct IslandScratch {
+    std::vector<RowKey> keys;
+    std::vector<ContactSlot> contacts;
+    OrderingCache::Signature structure;
+    ode::IslandView view;
+    Start start;
+    Workspace workspace;
+};
+
+/// The hook's memory on the calling thread: ODE may step islands on several threads at once,
+/// each solves one island at a time (one solve per workspace).
+IslandScratch& thread_scratch() {
+    thread_local IslandScratch scratch;
+    return scratch;
+}
+
 dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
     const Method method = *static_cast<const Method*>(userdata);
-    thread_local std::vector<RowKey> keys;
-    thread_local OrderingCache::Signature structure;
-    thread_local ode::IslandView view;
+    IslandScratch& scratch = thread_scratch();
+    std::vector<RowKey>& keys = scratch.keys;
+    OrderingCache::Signature& structure = scratch.structure;
     if (problem->joints != nullptr) {
-        row_keys(*problem, keys);
+        row_keys(*problem, keys, scratch.contacts);
         if (!keys.empty()) OrderingCache::signature(*problem, keys.front(), structure);
     }
     const bool known_rows = problem->joints != nullptr && !keys.empty();
     const bool use_memory = known_rows && has_bounded_rows(*problem);
 
-    thread_local Start start;  // its vectors keep their capacity from island to island
+    Start& start = scratch.start;
     start.ordering.clear();
     Options options;
     bool warm = false;
@@ -121,10 +138,10 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     }
     options.method = method;
     if (!warm) start.states.clear();
-    const Problem q = view.of(*problem, pivoting::is_small_island(problem->m, options));
+    const Problem q = scratch.view.of(*problem, pivoting::is_small_island(problem->m, options));
 
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
-    Result r = solve(q, options, Strided{problem->pairsbx + 1, 2}, start);
+    Result r = solve(q, options, Strided{problem->pairsbx + 1, 2}, start, scratch.workspace);
 
     const dMLCPStatus status = to_ode_status(r);
     stats->pivots = r.pivoting.pivots;

@@ -16,6 +16,7 @@
 #include "pivoting/friction_set.h"
 #include "ordering/ordering_choice.h"
 #include "pivoting/tuning.h"
+#include "pivoting/strategies.h"
 #include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting {
@@ -28,9 +29,8 @@ bool is_identity(const std::vector<int>& perm) {
     return true;
 }
 
-/// One BPP solve's problem in the permuted space (perm[new] = old), kept per thread so that its
-/// vectors' capacity outlives the solve. One solve at a time per thread: nothing a solve calls
-/// starts another.
+/// One BPP solve's problem in the permuted space (perm[new] = old), kept in the caller's
+/// BppWorkspace so that its vectors' capacity outlives the solve.
 struct PermutedProblem {
     std::vector<int> perm;
     linalg::SymmetricRows permuted_A;  ///< A in the solver's order, unless that is the caller's
@@ -39,11 +39,6 @@ struct PermutedProblem {
     FrictionSet friction;
     std::unique_ptr<FreeSolver> solver;
 };
-
-[[gnu::noinline]] PermutedProblem& thread_problem() {
-    thread_local PermutedProblem problem;
-    return problem;
-}
 
 /// The factor strategy: the method's own, except Bpp on small islands (dense_island_rows).
 Method strategy_of(const Problem& p, const Options& o) {
@@ -130,12 +125,22 @@ std::vector<char> tight_set(const std::vector<RowState>& states) {
 
 }  // namespace
 
+struct BppWorkspace::Buffers {
+    PermutedProblem problem;
+    LoopWorkspace loop;
+    StrategyBuffers strategies;
+};
+
+BppWorkspace::BppWorkspace() : buffers_(std::make_unique<Buffers>()) {}
+BppWorkspace::~BppWorkspace() = default;
+
 Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, const Start& start,
-                 std::vector<double>& x) {
+                 std::vector<double>& x, BppWorkspace& workspace) {
     const Method strategy = strategy_of(problem, options);
-    PermutedProblem& q = thread_problem();
+    PermutedProblem& q = workspace.buffers().problem;
     order(problem, A, options, start, strategy, q);
-    q.solver = make_free_solver(strategy, *q.A);
+    q.solver.reset();  // the previous solve's strategy works in the buffers the next one takes
+    q.solver = make_free_solver(strategy, *q.A, workspace.buffers().strategies);
     if (!q.solver) {
         x.assign(static_cast<std::size_t>(problem.n), 0.0);
         Result r;
@@ -147,7 +152,7 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     std::vector<RowState> states = permuted_start(problem, start, q.perm);
     std::vector<double> xp;
     PivotCounters counters;
-    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters);
+    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.buffers().loop);
     PolicyOutcome outcome;
     int rounds = 0, lemke_pivots = 0;
     std::string note;

@@ -3,6 +3,7 @@
 // optional up-front continuation and the regularize-on-breakdown retry around the pivoting loop.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "ode_bpp/solver.h"
@@ -10,12 +11,26 @@
 
 namespace ode_bpp::pivoting {
 
+/// The buffers of solve_bpp (bpp_driver.cpp: the permuted problem, the factor strategies' and the
+/// pivoting loop's), kept by the caller so that their capacity outlives one solve. One solve per
+/// workspace at a time.
+class BppWorkspace {
+public:
+    BppWorkspace();
+    ~BppWorkspace();
+    struct Buffers;
+    Buffers& buffers() { return *buffers_; }
+
+private:
+    std::unique_ptr<Buffers> buffers_;
+};
+
 /// Solves a validated problem with options.method in {BppChol, BppDown, BppSky, Bpp}.
 /// A: linalg::SymmetricRows(problem, {}), the problem's matrix in original order.
 /// x: out, n entries, original space (zero when the status is NotSpd).
 /// Fills status, message, fallback ("regularized" or empty), the counters, tight, states
 /// (original space) and factor_error; leaves the residual fields to the caller.
 Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, const Start& start,
-                 std::vector<double>& x);
+                 std::vector<double>& x, BppWorkspace& workspace);
 
 }  // namespace ode_bpp::pivoting

@@ -18,16 +18,14 @@ namespace {
 /// demo_motors), while on hundreds of rows (Alg. 1 in the paper's comparison) blocking wins.
 constexpr int kPlainLoopsUpTo = 32;
 
-/// Buffers kept per thread so that their capacity outlives one solve (allocation dominated small
-/// islands). One solver object per thread at a time: the driver makes one per solve.
+/// Buffers kept by the caller (DenseRefactorBuffers) so that their capacity outlives one solve
+/// (allocation dominated small islands). One solver object per buffers at a time.
 struct DenseWorkspace {
     std::vector<double> store, rhs, diagonal;
     std::vector<int> free, position;
 };
 
-[[gnu::noinline]] DenseWorkspace& sized_workspace(int n) {
-    thread_local DenseWorkspace workspace;
-    DenseWorkspace& w = workspace;
+DenseWorkspace& sized_workspace(DenseWorkspace& w, int n) {
     w.store.resize(static_cast<std::size_t>(n) * n);
     w.rhs.resize(static_cast<std::size_t>(n));
     w.diagonal.resize(static_cast<std::size_t>(n));
@@ -39,7 +37,7 @@ struct DenseWorkspace {
 class DenseRefactorSolver final : public FreeSolver {
 public:
     /// Every buffer is sized for |F| = n once: a solve allocates nothing per pivot step.
-    explicit DenseRefactorSolver(const linalg::SymmetricRows& Ap) : A_(Ap), ws_(sized_workspace(Ap.n())) {}
+    DenseRefactorSolver(const linalg::SymmetricRows& Ap, DenseWorkspace& ws) : A_(Ap), ws_(sized_workspace(ws, Ap.n())) {}
 
     bool prepare(double shift) override {
         shift_ = shift;
@@ -124,8 +122,15 @@ private:
 
 }  // namespace
 
-std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRows& Ap) {
-    return std::make_unique<DenseRefactorSolver>(Ap);
+struct DenseRefactorBuffers::Vectors {
+    DenseWorkspace workspace;
+};
+
+DenseRefactorBuffers::DenseRefactorBuffers() : vectors_(std::make_unique<Vectors>()) {}
+DenseRefactorBuffers::~DenseRefactorBuffers() = default;
+
+std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRows& Ap, DenseRefactorBuffers& buffers) {
+    return std::make_unique<DenseRefactorSolver>(Ap, buffers.vectors().workspace);
 }
 
 }  // namespace ode_bpp::pivoting

@@ -8,8 +8,8 @@
 namespace ode_bpp::pivoting {
 
 FixedBoundSolver::FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,
-                                   PivotCounters& counters)
-    : lcp_(lcp), solver_(solver), options_(options), counters_(counters), regularization_(max_diag) {}
+                                   PivotCounters& counters, LoopWorkspace& loop)
+    : lcp_(lcp), solver_(solver), options_(options), counters_(counters), loop_(loop), regularization_(max_diag) {}
 
 FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<double>& x, int budget) {
     start_ = states;
@@ -33,13 +33,13 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
     const auto left = [&] { return budget - (counters_.pivots - first); };
     const bool rescue_allowed = options_.tuning.rescue_after > 0;
     LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, options_.tuning.rescue_after) : budget),
-                                             states, x, counters_);
+                                             states, x, counters_, loop_);
     if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
     outcome = rescue(states, x, left());
     if (outcome != LoopOutcome::Stalled) return outcome;
     if (!prepare(shift())) return LoopOutcome::Breakdown;
     if (left() <= 0) return LoopOutcome::MaxIterations;
-    return pivot_fixed_bounds(lcp_, solver_, settings(left()), states, x, counters_);
+    return pivot_fixed_bounds(lcp_, solver_, settings(left()), states, x, counters_, loop_);
 }
 
 /// The rescue continuation (regularization.h): stages on A + delta I, the first from the warm
@@ -62,7 +62,7 @@ LoopOutcome FixedBoundSolver::rescue(std::vector<RowState>& states, std::vector<
         stage.max_pivots = budget - (counters_.pivots - first);
         trial = accepted;
         const int before = counters_.pivots;
-        const LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, stage, trial, x, counters_);
+        const LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, stage, trial, x, counters_, loop_);
         if (outcome == LoopOutcome::Breakdown) return outcome;
         if (outcome == LoopOutcome::Converged) {
             accepted.swap(trial);
@@ -90,7 +90,7 @@ void FixedBoundSolver::run_continuation(std::vector<RowState>& states, std::vect
         const double delta = regularization_.continuation(k, stages);
         if (delta <= shift() || !prepare(delta)) break;
         std::vector<RowState> trial = states;
-        if (pivot_fixed_bounds(lcp_, solver_, settings(budget), trial, x, counters_) == LoopOutcome::Breakdown) break;
+        if (pivot_fixed_bounds(lcp_, solver_, settings(budget), trial, x, counters_, loop_) == LoopOutcome::Breakdown) break;
         states.swap(trial);
     }
 }

@@ -29,9 +29,9 @@ class FixedBoundSolver {
 public:
     /// lcp: the problem (its shift is set here); solver: a factor strategy on lcp.A; options:
     /// murty_after, tolerance, record_steps, rescue_after, continuation_stages; max_diag:
-    /// max_i A_ii; counters: accumulated over every solve.
+    /// max_i A_ii; counters: accumulated over every solve; loop: the pivoting loop's buffers.
     FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,
-                     PivotCounters& counters);
+                     PivotCounters& counters, LoopWorkspace& loop);
 
     /// Solves from `states` (in: the warm start; out: the final index set) within `budget` pivot
     /// steps of the target problem. x: out, n entries.
@@ -52,6 +52,7 @@ private:
     FreeSolver& solver_;
     const Options& options_;
     PivotCounters& counters_;
+    LoopWorkspace& loop_;
     Regularization regularization_;
     std::optional<double> prepared_;       ///< the shift the solver holds a factor of
     bool continuation_done_ = false;       ///< the up-front continuation runs before the first solve only

@@ -13,12 +13,12 @@ bool pivot_breaks_down(double pivot_squared, double diagonal) {
     return !(pivot_squared > std::numeric_limits<double>::epsilon() * diagonal);
 }
 
-std::unique_ptr<FreeSolver> make_free_solver(Method method, const linalg::SymmetricRows& Ap) {
+std::unique_ptr<FreeSolver> make_free_solver(Method method, const linalg::SymmetricRows& Ap, StrategyBuffers& buffers) {
     switch (method) {
-        case Method::BppChol: return make_dense_refactor_solver(Ap);
-        case Method::BppDown: return make_skyline_solver(Ap, SkylineVariant::DenseDelete);
-        case Method::BppSky: return make_skyline_solver(Ap, SkylineVariant::SkylineDelete);
-        case Method::Bpp: return make_skyline_solver(Ap, SkylineVariant::CostModel);
+        case Method::BppChol: return make_dense_refactor_solver(Ap, buffers.dense);
+        case Method::BppDown: return make_skyline_solver(Ap, SkylineVariant::DenseDelete, buffers.skyline);
+        case Method::BppSky: return make_skyline_solver(Ap, SkylineVariant::SkylineDelete, buffers.skyline);
+        case Method::Bpp: return make_skyline_solver(Ap, SkylineVariant::CostModel, buffers.skyline);
         default: return nullptr;
     }
 }

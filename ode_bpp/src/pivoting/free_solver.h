@@ -41,8 +41,11 @@ public:
 /// precision (or d is NaN), and the factor would amplify rounding by 1/eps.
 bool pivot_breaks_down(double pivot_squared, double diagonal);
 
+struct StrategyBuffers;  // strategies.h
+
 /// The strategy of a BPP method (BppChol, BppDown, BppSky, Bpp) on Ap; null for other methods
-/// or when the method's kernels are not available.
-std::unique_ptr<FreeSolver> make_free_solver(Method method, const linalg::SymmetricRows& Ap);
+/// or when the method's kernels are not available. buffers: where the strategy works, kept by
+/// the caller; they must outlive the strategy.
+std::unique_ptr<FreeSolver> make_free_solver(Method method, const linalg::SymmetricRows& Ap, StrategyBuffers& buffers);
 
 }  // namespace ode_bpp::pivoting

@@ -67,9 +67,9 @@ private:
     std::vector<RowState> sets_;  ///< n entries each
 };
 
-/// The loop's vectors, kept per thread so that their capacity outlives one run: on small islands
-/// allocating them afresh at every run cost a third of the solve (callgrind, ODE's demo_motors).
-/// A run uses them from start to end and calls nothing that runs another loop on this thread.
+/// The loop's vectors (LoopWorkspace), kept by the caller so that their capacity outlives one
+/// run: on small islands allocating them afresh at every run cost a third of the solve
+/// (callgrind, ODE's demo_motors). A run uses them from start to end.
 struct Workspace {
     std::vector<char> tight;
     std::vector<double> Ax, x_free, rhs_x;
@@ -142,15 +142,11 @@ void give_projected(const Snapshot& best, std::vector<RowState>& states, std::ve
     orient_pinned_rows(it, states);
 }
 
-[[gnu::noinline]] Workspace& thread_workspace() {
-    thread_local Workspace workspace;
-    return workspace;
-}
-
 class PivotLoop {
 public:
-    PivotLoop(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings, PivotCounters& counters)
-        : lcp_(lcp), solver_(solver), settings_(settings), counters_(counters), n_(lcp.n()), ws_(thread_workspace()) {
+    PivotLoop(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings, PivotCounters& counters,
+              Workspace& ws)
+        : lcp_(lcp), solver_(solver), settings_(settings), counters_(counters), n_(lcp.n()), ws_(ws) {
         it().lo = lcp.lo;
         it().hi = lcp.hi;
         ws_.rhs_x.assign(static_cast<std::size_t>(n_), 0.0);
@@ -386,9 +382,23 @@ private:
 
 }  // namespace
 
+struct LoopWorkspace::Buffers {
+    Workspace loop;
+};
+
+LoopWorkspace::LoopWorkspace() : buffers_(std::make_unique<Buffers>()) {}
+LoopWorkspace::~LoopWorkspace() = default;
+
+LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,
+                               std::vector<RowState>& states, std::vector<double>& x, PivotCounters& counters,
+                               LoopWorkspace& workspace) {
+    return PivotLoop(lcp, solver, settings, counters, workspace.buffers().loop).run(states, x);
+}
+
 LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,
                                std::vector<RowState>& states, std::vector<double>& x, PivotCounters& counters) {
-    return PivotLoop(lcp, solver, settings, counters).run(states, x);
+    LoopWorkspace workspace;
+    return pivot_fixed_bounds(lcp, solver, settings, states, x, counters, workspace);
 }
 
 }  // namespace ode_bpp::pivoting

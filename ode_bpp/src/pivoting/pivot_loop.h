@@ -2,6 +2,7 @@
 // with fixed bounds (paper Sec. 3.1, Eq. 4-6, Alg. 1/2 outer loop), in the permuted space.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "ode_bpp/solver.h"
@@ -43,10 +44,28 @@ enum class LoopOutcome {
     Breakdown,      ///< the strategy met a non-positive pivot; x and states are not meaningful
 };
 
+/// The loop's buffers (pivot_loop.cpp), kept by the caller so that their capacity outlives one
+/// run: a warm run allocates nothing. One run per workspace at a time.
+class LoopWorkspace {
+public:
+    LoopWorkspace();
+    ~LoopWorkspace();
+    struct Buffers;
+    Buffers& buffers() { return *buffers_; }
+
+private:
+    std::unique_ptr<Buffers> buffers_;
+};
+
 /// Runs the loop from the index set `states` (n entries, permuted space; rows that must be free
 /// or are pinned are corrected first) and leaves the final index set there. x: out, n entries,
 /// permuted space; always within [lo, hi] unless the outcome is Breakdown.
 /// The solver must have been prepared with lcp.shift.
+/// workspace: the loop's buffers.
+LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,
+                               std::vector<RowState>& states, std::vector<double>& x, PivotCounters& counters,
+                               LoopWorkspace& workspace);
+/// The same with buffers of its own (allocated for this run).
 LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,
                                std::vector<RowState>& states, std::vector<double>& x, PivotCounters& counters);
 

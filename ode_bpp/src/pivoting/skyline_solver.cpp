@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cassert>
 #include <limits>
+#include <optional>
 
 #include "linalg/cost_model.h"
 #include "linalg/factor_error.h"
@@ -26,15 +27,48 @@ namespace {
 using linalg::SkylineMatrix;
 using linalg::SkylineShape;
 
-SkylineShape shape_for(const linalg::SymmetricRows& A, SkylineVariant variant) {
-    return variant == SkylineVariant::DenseDelete ? SkylineShape::dense(A.n())
-                                                  : SkylineShape::from_row_profile(A.row_profile());
+}  // namespace
+
+struct SkylineBuffers::Storage {
+    /// What shape and cost were made for: the variant, and the row profile of Ap (its size for
+    /// DenseDelete, whose shape depends on n only).
+    std::optional<SkylineVariant> variant;
+    std::vector<int> profile, new_profile;
+    SkylineShape shape;
+    std::optional<linalg::CostModel> cost;
+    SkylineMatrix A_env, L0, L;
+    std::vector<int> dirty_rows, tight_rows;
+    std::vector<double> work;
+
+    /// The shape and cost model of Ap's envelope: those already held when Ap's envelope is the
+    /// one they were made for, else made afresh. O(nnz) for the check.
+    void shape_for(const linalg::SymmetricRows& A, SkylineVariant v) {
+        if (v == SkylineVariant::DenseDelete) new_profile.assign(1, A.n());
+        else A.row_profile(new_profile);
+        if (variant == v && new_profile == profile) return;
+        variant = v;
+        profile.swap(new_profile);
+        shape = v == SkylineVariant::DenseDelete ? SkylineShape::dense(A.n()) : SkylineShape::from_row_profile(profile);
+        cost.emplace(shape);
+    }
+};
+
+SkylineBuffers::SkylineBuffers() : storage_(std::make_unique<Storage>()) {}
+SkylineBuffers::~SkylineBuffers() = default;
+
+namespace {
+
+/// Storage prepared for A: its shape and cost model in place.
+SkylineBuffers::Storage& prepared(SkylineBuffers& buffers, const linalg::SymmetricRows& A, SkylineVariant variant) {
+    buffers.storage().shape_for(A, variant);
+    return buffers.storage();
 }
 
 class SkylineSolver final : public FreeSolver {
 public:
-    SkylineSolver(const linalg::SymmetricRows& A, SkylineVariant variant)
-        : A_(A), variant_(variant), shape_(shape_for(A, variant)), cost_(shape_) {}
+    SkylineSolver(const linalg::SymmetricRows& A, SkylineVariant variant, SkylineBuffers::Storage& storage)
+        : A_(A), variant_(variant), shape_(storage.shape), cost_(*storage.cost), A_env_(storage.A_env), L0_(storage.L0),
+          L_(storage.L), dirty_rows_(storage.dirty_rows), tight_rows_(storage.tight_rows), work_(storage.work) {}
 
     /// Alg. 2 line 2: L0 L0^T = Ap + shift I inside the envelope.
     bool prepare(double shift) override {
@@ -88,7 +122,7 @@ public:
 private:
     /// A_env_ = Ap + shift I in the skyline shape (entries outside Ap's pattern stay 0).
     void load_matrix(double shift) {
-        A_env_ = SkylineMatrix(shape_);
+        A_env_.reset(shape_);
         for (int i = 0; i < A_.n(); ++i) {
             A_env_.at(i, i) = A_.diag(i) + shift;
             for (int k = A_.row_begin(i); k < A_.row_end(i); ++k)
@@ -165,20 +199,22 @@ private:
 
     const linalg::SymmetricRows& A_;
     const SkylineVariant variant_;
-    const SkylineShape shape_;
-    const linalg::CostModel cost_;
-    SkylineMatrix A_env_, L0_, L_;
+    // in the caller's SkylineBuffers
+    const SkylineShape& shape_;
+    const linalg::CostModel& cost_;
+    SkylineMatrix &A_env_, &L0_, &L_;
     int dirty_from_ = 0;
-    std::vector<int> dirty_rows_;  ///< rows of L_ that differ from L0_ before dirty_from_
+    std::vector<int>& dirty_rows_;  ///< rows of L_ that differ from L0_ before dirty_from_
     const SkylineMatrix* last_factor_ = nullptr;  ///< L_FF of the latest successful solve_free
-    std::vector<int> tight_rows_;
-    std::vector<double> work_;
+    std::vector<int>& tight_rows_;
+    std::vector<double>& work_;
 };
 
 }  // namespace
 
-std::unique_ptr<FreeSolver> make_skyline_solver(const linalg::SymmetricRows& Ap, SkylineVariant variant) {
-    return std::make_unique<SkylineSolver>(Ap, variant);
+std::unique_ptr<FreeSolver> make_skyline_solver(const linalg::SymmetricRows& Ap, SkylineVariant variant,
+                                                SkylineBuffers& buffers) {
+    return std::make_unique<SkylineSolver>(Ap, variant, prepared(buffers, Ap, variant));
 }
 
 }  // namespace ode_bpp::pivoting

@@ -8,6 +8,7 @@
 #include "linalg/dense_cholesky.h"
 #include "ode_bpp/residuals.h"
 #include "pivoting/classify_row.h"
+#include "residuals.h"
 
 namespace ode_bpp::pivoting {
 
@@ -20,23 +21,6 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr int kPolishRounds = 2;
 constexpr int kPolishSteps = 6;
 
-/// Buffers of one solve, kept per thread so that their capacity outlives it: a warm solve of a
-/// small island allocates nothing. One solve at a time per thread (nothing here starts another).
-struct Workspace {
-    std::vector<double> factor;   ///< n x n, row stride n: A_FF, then L_FF, in its leading block
-    std::vector<double> diagonal, rhs, lo, hi, w, scale;
-    std::vector<int> free;
-    std::vector<RowState> requested, best_states, trial, kept_states;
-    std::vector<double> kept_x, kept_w, kept_scale;
-    Infeasibility inf, best_inf;
-};
-
-// noinline: inlined, GCC re-derives a thread_local's address at every use (symmetric_rows.cpp)
-[[gnu::noinline]] Workspace& thread_workspace() {
-    thread_local Workspace workspace;
-    return workspace;
-}
-
 /// A(i, j) of the symmetric A from the lower triangle of the dense form.
 double entry(const Problem& p, int i, int j) {
     return i >= j ? p.A[static_cast<std::ptrdiff_t>(i) * p.lda + j] : p.A[static_cast<std::ptrdiff_t>(j) * p.lda + i];
@@ -48,7 +32,7 @@ bool is_friction_row(const Problem& p, int i) { return p.findex != nullptr && p.
 /// refactorization of A_FF per step.
 class SmallIsland {
 public:
-    SmallIsland(const Problem& p, const Options& o, Workspace& ws, Result& r) : p_(p), o_(o), ws_(ws), r_(r), n_(p.n) {
+    SmallIsland(const Problem& p, const Options& o, SmallIslandBuffers& ws, Result& r) : p_(p), o_(o), ws_(ws), r_(r), n_(p.n) {
         ws_.factor.resize(static_cast<std::size_t>(n_) * n_);
         for (auto* v : {&ws_.diagonal, &ws_.rhs, &ws_.w, &ws_.scale}) v->resize(static_cast<std::size_t>(n_));
         ws_.free.resize(static_cast<std::size_t>(n_));
@@ -121,11 +105,11 @@ private:
             ++steps;
             if (!solve_step(states, x)) return false;
             const Infeasibility& inf = classify(states, x);
-            remember_if_best(inf, states);
             if (inf.count() == 0) {
                 orient_pinned_rows(states);
                 return true;
             }
+            remember_if_best(inf, states);  // only Murty's phase reads it, after an infeasible step
             if (inf.count() < least_count) {
                 least_count = inf.count();
                 block_steps_left = std::max(0, o_.tuning.murty_after);
@@ -260,7 +244,7 @@ private:
 
     const Problem& p_;
     const Options& o_;
-    Workspace& ws_;
+    SmallIslandBuffers& ws_;
     Result& r_;
     const int n_;
     int best_count_ = 0;
@@ -278,9 +262,8 @@ bool takes_small_island(const Problem& problem, const Options& options) {
     return is_small_island(problem.n, options) && problem.sparse == nullptr && problem.A != nullptr;
 }
 
-bool solve_small_island(const Problem& problem, const Options& options, const Start& start, std::vector<double>& x,
-                        Result& r) {
-    Workspace& ws = thread_workspace();
+bool solve_small_island(const Problem& problem, const Options& options, const Start& start, SmallIslandBuffers& ws,
+                        std::vector<double>& x, Result& r, Residuals& residuals) {
     std::vector<RowState>& states = r.states;
     states.assign(static_cast<std::size_t>(problem.n), RowState::Free);
     if (!start.states.empty()) states.assign(start.states.begin(), start.states.end());
@@ -291,6 +274,9 @@ bool solve_small_island(const Problem& problem, const Options& options, const St
     r.status = Status::Converged;
     r.tight = static_cast<int>(std::count_if(states.begin(), states.end(), [](RowState s) { return s != RowState::Free; }));
     r.factor_error = std::numeric_limits<double>::quiet_NaN();
+    // the loop's w and scale are those of x: every step refreshes them, a polish round that
+    // fails restores them with x
+    residuals = dense_residuals_from(problem, ConstStrided{x.data(), 1}, ws.w, ws.scale, &states);
     return true;
 }
 

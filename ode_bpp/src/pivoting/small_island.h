@@ -6,7 +6,8 @@
 // copies, rescue bookkeeping) costs several times the pivoting itself (docs/benchmarks.md, small
 // islands). This path keeps only what such an island needs: A_FF gathered and factored densely
 // at every step (linalg/dense_cholesky.h), the classification of classify_row.h, the polish of a
-// converged index set, and no allocation once its per-thread buffers have grown. Whatever it cannot
+// converged index set, and no allocation once its buffers (kept by the caller) have grown, and
+// the residuals of its answer from the loop's own w. Whatever it cannot
 // finish (its budget runs out, a Cholesky pivot breaks down, Consistent friction) it leaves to
 // the general driver, which then solves the island from the same warm start.
 //
@@ -15,9 +16,22 @@
 
 #include <vector>
 
+#include "ode_bpp/residuals.h"
 #include "ode_bpp/solver.h"
+#include "pivoting/classify_row.h"
 
 namespace ode_bpp::pivoting {
+
+/// The buffers of one small-island solve, kept by the caller (Workspace) so that their capacity
+/// outlives it: a warm solve allocates nothing. One solve per buffers at a time.
+struct SmallIslandBuffers {
+    std::vector<double> factor;   ///< n x n, row stride n: A_FF, then L_FF, in its leading block
+    std::vector<double> diagonal, rhs, lo, hi, w, scale;
+    std::vector<int> free;
+    std::vector<RowState> requested, best_states, trial, kept_states;
+    std::vector<double> kept_x, kept_w, kept_scale;
+    Infeasibility inf, best_inf;
+};
 
 /// True when an island of n rows belongs on this path: Method::Bpp, Frozen friction and
 /// 1 <= n <= options.tuning.dense_island_rows (callers that assemble A choose its form by this).
@@ -29,10 +43,10 @@ bool takes_small_island(const Problem& problem, const Options& options);
 
 /// Solves a validated problem that takes_small_island accepts, from start.states (or all free).
 /// x: out, n entries. r: out; on success status Converged, the pivot counters (every step a
-/// refactorization), tight_per_step, states and tight; the residual fields are left to the
-/// caller. Returns false, leaving x and r unspecified, when the island needs the general driver
-/// (a spent budget, a breakdown, or an answer that is not finite).
-bool solve_small_island(const Problem& problem, const Options& options, const Start& start, std::vector<double>& x,
-                        Result& r);
+/// refactorization), tight_per_step, states and tight; residuals: out, those of x (as
+/// compute_residuals gives them). Returns false, leaving x, r and residuals unspecified, when the
+/// island needs the general driver (a spent budget, a breakdown, or an answer that is not finite).
+bool solve_small_island(const Problem& problem, const Options& options, const Start& start, SmallIslandBuffers& buffers,
+                        std::vector<double>& x, Result& r, Residuals& residuals);
 
 }  // namespace ode_bpp::pivoting

@@ -7,8 +7,43 @@
 
 namespace ode_bpp::pivoting {
 
+/// The buffers of the dense refactoring (dense_refactor_solver.cpp), kept by the caller so that
+/// their capacity outlives one solve. One strategy per buffers at a time.
+class DenseRefactorBuffers {
+public:
+    DenseRefactorBuffers();
+    ~DenseRefactorBuffers();
+    struct Vectors;
+    Vectors& vectors() { return *vectors_; }
+
+private:
+    std::unique_ptr<Vectors> vectors_;
+};
+
 /// Alg. 1: gathers A_FF densely and factors it afresh (Eigen LLT) at every step; no L0.
-std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRows& Ap);
+/// buffers: where it works; they must outlive the strategy.
+std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRows& Ap, DenseRefactorBuffers& buffers);
+
+/// The buffers of the skyline strategies (skyline_solver.cpp: the envelope's shape and cost
+/// model, A's envelope, L0 and the working factor), kept by the caller so that their capacity
+/// outlives one solve, and the shape and cost model with them while the matrix's envelope stays
+/// the same (an island of unchanged structure, step after step). One strategy per buffers at a time.
+class SkylineBuffers {
+public:
+    SkylineBuffers();
+    ~SkylineBuffers();
+    struct Storage;
+    Storage& storage() { return *storage_; }
+
+private:
+    std::unique_ptr<Storage> storage_;
+};
+
+/// The buffers of every factor strategy (make_free_solver).
+struct StrategyBuffers {
+    DenseRefactorBuffers dense;
+    SkylineBuffers skyline;
+};
 
 /// How the skyline-based strategies obtain L_FF from L0.
 enum class SkylineVariant {
@@ -17,7 +52,9 @@ enum class SkylineVariant {
     CostModel,      ///< Bpp: envelope storage, per step the cheaper of deletion and partial refactoring
 };
 
-/// Alg. 2 (+3) and ours, on Ap's envelope (dense storage for DenseDelete).
-std::unique_ptr<FreeSolver> make_skyline_solver(const linalg::SymmetricRows& Ap, SkylineVariant variant);
+/// Alg. 2 (+3) and ours, on Ap's envelope (dense storage for DenseDelete). buffers: where it
+/// works; they must outlive the strategy.
+std::unique_ptr<FreeSolver> make_skyline_solver(const linalg::SymmetricRows& Ap, SkylineVariant variant,
+                                                SkylineBuffers& buffers);
 
 }  // namespace ode_bpp::pivoting

@@ -1,0 +1,36 @@
+// ode_bpp/workspace.h: the memory a solve works in, kept by the caller from solve to solve.
+#pragma once
+
+#include <memory>
+
+#include "ode_bpp/export.h"
+
+namespace ode_bpp {
+
+/// The scratch memory of solve(): every buffer the solver needs besides the problem, the answer
+/// and the Result. Buffers grow to the largest problem met and keep their capacity, so that a
+/// solve on a warm workspace allocates nothing beyond its Result.
+///
+/// One solve per workspace at a time: a workspace must not be shared by solves that run
+/// concurrently (threads), and a solve never starts another on its own workspace. Independent
+/// workspaces may be used from any threads. Movable, not copyable; creating one allocates only
+/// its handle.
+class ODE_BPP_API Workspace {
+public:
+    Workspace();
+    ~Workspace();
+    Workspace(Workspace&&) noexcept;
+    Workspace& operator=(Workspace&&) noexcept;
+    Workspace(const Workspace&) = delete;
+    Workspace& operator=(const Workspace&) = delete;
+
+    /// The buffers of each part of the solver (defined inside the library, workspace_parts.h).
+    struct Parts;
+    /// Created on first use.
+    Parts& parts();
+
+private:
+    std::unique_ptr<Parts> parts_;
+};
+
+}  // namespace ode_bpp

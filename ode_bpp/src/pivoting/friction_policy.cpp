@@ -7,6 +7,7 @@
 #include "pivoting/friction_lcp.h"
 #include "pivoting/friction_update.h"
 #include "pivoting/lemke.h"
+#include "pivoting/sparse_lemke.h"
 #include "pivoting/tuning.h"
 
 namespace ode_bpp::pivoting {
@@ -102,25 +103,34 @@ ConsistentFriction::Stage ConsistentFriction::linked_solve(std::vector<RowState>
 ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& states, std::vector<double>& x) {
     if (lemke_tried_ || !tuning_.lemke_friction) return Stage::Unfinished;
     lemke_tried_ = true;
-    if (lcp_.n() > tuning::kLemkeMaxRows || lemke_variables_at_most() > tuning::kLemkeMaxVariables) {
-        note_ = "Lemke stage skipped: the island is too large for a dense LCP";
+    const int variables = lemke_variables_at_most();
+    const bool dense = lcp_.n() <= tuning::kLemkeMaxRows && variables <= tuning::kLemkeMaxVariables;
+    if (!dense && variables > tuning::kSparseLemkeMaxVariables) {
+        note_ = "Lemke stage skipped: the island is too large even for the sparse Lemke stage";
         return Stage::Unfinished;
     }
     std::string why;
-    const std::optional<FrictionLcp> lcp = FrictionLcp::build(lcp_, friction_.view(), why);
+    const std::optional<FrictionLcp> lcp =
+        dense ? FrictionLcp::build(lcp_, friction_.view(), why) : FrictionLcp::build_sparse(lcp_, friction_.view(), why);
     if (!lcp) {
         note_ = "Lemke stage skipped: " + why;
         return Stage::Unfinished;
     }
     const int size = static_cast<int>(lcp->q().size());
+    const int max_pivots = tuning::kLemkePivotsPerVariable * size + 10;
+    // the sparse path starts from the index set at hand, then from the slack basis
+    const std::vector<char> guess = dense ? std::vector<char>{} : lcp->basis_guess(states, x);
     LemkeSolution s;
     for (int attempt = 0; attempt < tuning::kLemkeAttempts && s.outcome != LemkeOutcome::Solved; ++attempt) {
-        s = solve_lemke(lcp->M(), lcp->q(), spread_covering_vector(size, attempt),
-                        tuning::kLemkePivotsPerVariable * size + 10);
+        const Eigen::VectorXd d = spread_covering_vector(size, attempt);
+        s = dense ? solve_lemke(lcp->M(), lcp->q(), d, max_pivots)
+                  : solve_sparse_lemke(lcp->sparse_M(), lcp->q(), attempt == 0 ? guess : std::vector<char>{}, d, max_pivots);
         lemke_pivots_ += s.pivots;
     }
     if (s.outcome != LemkeOutcome::Solved) {
-        note_ = s.outcome == LemkeOutcome::RayTermination ? "Lemke stage ended on a ray" : "Lemke stage ran out of pivots";
+        note_ = s.outcome == LemkeOutcome::RayTermination  ? "Lemke stage ended on a ray"
+                : s.outcome == LemkeOutcome::SingularBasis ? "Lemke stage's basis factor broke down"
+                                                           : "Lemke stage ran out of pivots";
         return Stage::Unfinished;
     }
     std::vector<RowState> lemke_states;

@@ -19,6 +19,7 @@ enum class LemkeOutcome {
     Solved,         ///< z solves the LCP (to the rounding of the basis inverse)
     RayTermination, ///< no blocking row for the entering variable: M is outside Lemke's class here
     MaxPivots,      ///< the pivot budget ran out
+    SingularBasis,  ///< sparse_lemke.h: a refactorization found the basis singular (rounding)
 };
 
 struct LemkeSolution {

@@ -38,6 +38,9 @@ constexpr int kLemkeAttempts = 5;
 /// Largest friction LCP (variables) and island (rows) the dense Lemke stage takes on.
 constexpr int kLemkeMaxVariables = 1000;
 constexpr int kLemkeMaxRows = 1500;
+/// Above those, the sparse Lemke stage (sparse_lemke.h, islands without unbounded rows) takes
+/// friction LCPs of up to this many variables; its pivot costs one sparse solve, not O(N^2).
+constexpr int kSparseLemkeMaxVariables = 20000;
 
 // ---- the pivoting loop (pivot_loop.h) ----------------------------------------------------------
 /// Polish of a converged index set: rounds, and pivot steps per round.

@@ -1,0 +1,288 @@
+#include "pivoting/sparse_lemke.h"
+
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <utility>
+
+namespace ode_bpp::pivoting {
+
+namespace {
+
+/// As in lemke.cpp: entries below this fraction of a column's largest are rounding, not pivots.
+constexpr double kPivotTolerance = 1e-11;
+/// Ratios and lexicographic keys within this relative distance of the least are ties.
+constexpr double kTieTolerance = 1e-12;
+/// Eta vectors kept before the basis is factored afresh: each adds N to every solve, a
+/// refactorization costs about as much as the solves of this many pivots on the piles' LCPs.
+constexpr int kRefactorPeriod = 50;
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+/// The basis of the tableau I u - M z - d z0 = q (variables u_i = i, z_i = N + i, z0 = 2N) as
+/// B = L U of the basis at the last refactorization times the eta matrices of the pivots since.
+class SparseBasis {
+public:
+    SparseBasis(const SparseMatrix& M, const Eigen::VectorXd& d, std::vector<int> basis)
+        : M_(M), d_(d), n_(static_cast<int>(d.size())), basis_(std::move(basis)) {}
+
+    int n() const { return n_; }
+    int basic(int row) const { return basis_[row]; }
+    const std::vector<int>& variables() const { return basis_; }
+
+    /// Factors the current basis afresh (dropping the etas); false when it is singular.
+    bool refactor() {
+        std::vector<Eigen::Triplet<double>> entries;
+        for (int r = 0; r < n_; ++r) add_column(basis_[r], r, entries);
+        SparseMatrix B(n_, n_);
+        B.setFromTriplets(entries.begin(), entries.end());
+        lu_.analyzePattern(B);
+        lu_.factorize(B);
+        etas_.clear();
+        return lu_.info() == Eigen::Success;
+    }
+
+    /// v <- B^-1 v.
+    void solve(Eigen::VectorXd& v) const {
+        v = lu_.solve(v).eval();
+        for (const auto& [r, c] : etas_) {
+            const double vr = v[r] / c[r];
+            v -= c * vr;
+            v[r] = vr;
+        }
+    }
+
+    /// c = B^-1 a_var, a_var the variable's column of [I, -M, -d].
+    void column(int var, Eigen::VectorXd& c) const {
+        c.setZero(n_);
+        if (var < n_) {
+            c[var] = 1;
+        } else if (var < 2 * n_) {
+            for (SparseMatrix::InnerIterator it(M_, var - n_); it; ++it) c[it.row()] = -it.value();
+        } else {
+            c = -d_;
+        }
+        solve(c);
+    }
+
+    /// q - B x_B for the basic values xb.
+    Eigen::VectorXd residual(const Eigen::VectorXd& q, const Eigen::VectorXd& xb) const {
+        Eigen::VectorXd r = q;
+        for (int row = 0; row < n_; ++row) {
+            const int var = basis_[row];
+            if (var < n_)
+                r[var] -= xb[row];
+            else if (var < 2 * n_)
+                for (SparseMatrix::InnerIterator it(M_, var - n_); it; ++it) r[it.row()] += it.value() * xb[row];
+            else
+                r += d_ * xb[row];
+        }
+        return r;
+    }
+
+    /// The basic variable of row r becomes `entering`, whose column B^-1 a is c.
+    void exchange(int r, int entering, const Eigen::VectorXd& c) {
+        basis_[r] = entering;
+        etas_.emplace_back(r, c);
+    }
+
+    int etas() const { return static_cast<int>(etas_.size()); }
+
+private:
+    void add_column(int var, int col, std::vector<Eigen::Triplet<double>>& entries) const {
+        if (var < n_) {
+            entries.emplace_back(var, col, 1.0);
+        } else if (var < 2 * n_) {
+            for (SparseMatrix::InnerIterator it(M_, var - n_); it; ++it) entries.emplace_back(it.row(), col, -it.value());
+        } else {
+            for (int i = 0; i < n_; ++i)
+                if (d_[i] != 0) entries.emplace_back(i, col, -d_[i]);
+        }
+    }
+
+    const SparseMatrix& M_;
+    const Eigen::VectorXd& d_;
+    int n_;
+    std::vector<int> basis_;
+    Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu_;
+    std::vector<std::pair<int, Eigen::VectorXd>> etas_;
+};
+
+/// The path's state: the basis, B^-1 q, and the starting basis whose columns give the
+/// lexicographic keys.
+class SparseTableau {
+public:
+    SparseTableau(const SparseMatrix& M, const Eigen::VectorXd& q, const Eigen::VectorXd& d, std::vector<int> basis)
+        : q_(q), start_(basis), basis_(M, d, std::move(basis)) {}
+
+    int n() const { return basis_.n(); }
+    int artificial() const { return 2 * n(); }
+    int complement(int var) const { return var < n() ? var + n() : var - n(); }
+    int basic(int row) const { return basis_.basic(row); }
+    const Eigen::VectorXd& rhs() const { return rhs_; }
+
+    /// Factors the basis and computes B^-1 q; false when the basis is singular.
+    bool refresh() {
+        if (!basis_.refactor()) return false;
+        rhs_ = q_;
+        basis_.solve(rhs_);
+        return rhs_.allFinite();
+    }
+
+    void column(int var, Eigen::VectorXd& c) const { basis_.column(var, c); }
+
+    /// The leaving row for the entering column c by the lexicographic minimum ratio rule, or -1
+    /// when no entry blocks (a ray). The artificial variable leaves whenever it ties.
+    int ratio_test(const Eigen::VectorXd& c) const {
+        const double c_max = c.cwiseAbs().maxCoeff();
+        if (!(c_max > 0)) return -1;
+        double least = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < n(); ++i)
+            if (c[i] > kPivotTolerance * c_max) least = std::min(least, ratio(i, c));
+        if (!std::isfinite(least)) return -1;
+        const double rhs_scale = kTieTolerance * rhs_.cwiseAbs().maxCoeff();
+        std::vector<int> ties;
+        for (int i = 0; i < n(); ++i)
+            if (c[i] > kPivotTolerance * c_max && ratio(i, c) <= least * (1 + kTieTolerance) + rhs_scale / c[i])
+                ties.push_back(i);
+        for (int i : ties)
+            if (basic(i) == artificial()) return i;
+        for (int k = 0; k < n() && ties.size() > 1; ++k) narrow_lexicographically(k, c, ties);
+        return ties.front();
+    }
+
+    /// Exchanges the basic variable of row r for `entering`, whose column is c; refactors when
+    /// the etas have piled up. False when that refactorization finds the basis singular.
+    bool pivot(int r, int entering, const Eigen::VectorXd& c) {
+        const double step = rhs_[r] / c[r];
+        rhs_ -= c * step;
+        rhs_[r] = step;
+        basis_.exchange(r, entering, c);
+        return basis_.etas() < kRefactorPeriod || refresh();
+    }
+
+    /// The basic solution with one step of iterative refinement, negatives clamped to 0.
+    void extract(LemkeSolution& s) const {
+        Eigen::VectorXd xb = rhs_;
+        Eigen::VectorXd correction = basis_.residual(q_, xb);
+        basis_.solve(correction);
+        xb += correction;
+        const int N = n();
+        s.z = Eigen::VectorXd::Zero(N);
+        s.z_basic.assign(static_cast<std::size_t>(N), 0);
+        s.u_basic.assign(static_cast<std::size_t>(N), 0);
+        for (int r = 0; r < N; ++r) {
+            const int var = basic(r);
+            if (var < N) {
+                s.u_basic[var] = 1;
+            } else if (var < 2 * N) {
+                s.z_basic[var - N] = 1;
+                s.z[var - N] = std::max(0.0, xb[r]);
+            }
+        }
+    }
+
+private:
+    double ratio(int i, const Eigen::VectorXd& c) const { return std::max(rhs_[i], 0.0) / c[i]; }
+
+    /// Keeps the rows of `ties` whose key (B^-1 B0)(i, k) / c_i is least.
+    void narrow_lexicographically(int k, const Eigen::VectorXd& c, std::vector<int>& ties) const {
+        Eigen::VectorXd key;
+        basis_.column(start_[k], key);  // B^-1 times B0's column k
+        double least = std::numeric_limits<double>::infinity(), largest = 0;
+        for (int i : ties) {
+            least = std::min(least, key[i] / c[i]);
+            largest = std::max(largest, std::abs(key[i] / c[i]));
+        }
+        const double slack = kTieTolerance * largest;
+        ties.erase(std::remove_if(ties.begin(), ties.end(), [&](int i) { return key[i] / c[i] > least + slack; }),
+                   ties.end());
+    }
+
+    const Eigen::VectorXd& q_;
+    std::vector<int> start_;
+    SparseBasis basis_;
+    Eigen::VectorXd rhs_;
+};
+
+/// The starting basis: z_i where start says so, u_i elsewhere (the slack basis for empty start).
+std::vector<int> basis_of(const std::vector<char>& start, int n) {
+    std::vector<int> basis(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) basis[i] = !start.empty() && start[i] ? n + i : i;
+    return basis;
+}
+
+/// d = B0 s for the basis B0 (variables per row): B0^-1 d = s.
+Eigen::VectorXd covering_vector(const Eigen::SparseMatrix<double>& M, const std::vector<int>& basis,
+                                const Eigen::VectorXd& spread) {
+    const int n = static_cast<int>(spread.size());
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
+    for (int r = 0; r < n; ++r) {
+        const int var = basis[r];
+        if (var < n)
+            d[var] += spread[r];
+        else
+            for (Eigen::SparseMatrix<double>::InnerIterator it(M, var - n); it; ++it) d[it.row()] -= it.value() * spread[r];
+    }
+    return d;
+}
+
+}  // namespace
+
+LemkeSolution solve_sparse_lemke(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& q,
+                                 const std::vector<char>& start, const Eigen::VectorXd& spread, int max_pivots) {
+    const int n = static_cast<int>(q.size());
+    LemkeSolution s;
+    std::vector<int> basis = basis_of(start, n);
+    Eigen::VectorXd d = covering_vector(M, basis, spread);
+    auto tableau = std::make_unique<SparseTableau>(M, q, d, basis);
+    if (!tableau->refresh()) {  // a singular guess: the slack basis, d = spread
+        basis = basis_of({}, n);
+        d = spread;
+        tableau = std::make_unique<SparseTableau>(M, q, d, basis);
+        tableau->refresh();
+    }
+    SparseTableau& t = *tableau;
+    if (n == 0 || t.rhs().minCoeff() >= 0) {  // the starting basis solves it
+        t.extract(s);
+        s.outcome = LemkeOutcome::Solved;
+        return s;
+    }
+    // z0 enters at the row of the least x_r / s_r: then every basic value is >= 0
+    Eigen::Index first = 0;
+    t.rhs().cwiseQuotient(spread).minCoeff(&first);
+    Eigen::VectorXd c;
+    t.column(t.artificial(), c);
+    int entering = t.complement(t.basic(static_cast<int>(first)));
+    s.pivots = 1;
+    if (!t.pivot(static_cast<int>(first), t.artificial(), c)) {
+        s.outcome = LemkeOutcome::SingularBasis;
+        return s;
+    }
+    while (s.pivots < max_pivots) {
+        t.column(entering, c);
+        const int r = t.ratio_test(c);
+        if (r < 0) {
+            s.outcome = LemkeOutcome::RayTermination;
+            return s;
+        }
+        const int leaving = t.basic(r);
+        ++s.pivots;
+        if (!t.pivot(r, entering, c)) {
+            s.outcome = LemkeOutcome::SingularBasis;
+            return s;
+        }
+        if (leaving == t.artificial()) {
+            t.extract(s);
+            s.outcome = LemkeOutcome::Solved;
+            return s;
+        }
+        entering = t.complement(leaving);
+    }
+    s.outcome = LemkeOutcome::MaxPivots;
+    return s;
+}
+
+}  // namespace ode_bpp::pivoting

@@ -116,20 +116,11 @@ ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& state
         note_ = "Lemke stage skipped: " + why;
         return Stage::Unfinished;
     }
-    const int size = static_cast<int>(lcp->q().size());
-    const int max_pivots = tuning::kLemkePivotsPerVariable * size + 10;
-    // the sparse path starts from the index set at hand, then from the slack basis
-    const std::vector<char> guess = dense ? std::vector<char>{} : lcp->basis_guess(states, x);
-    LemkeSolution s;
-    for (int attempt = 0; attempt < tuning::kLemkeAttempts && s.outcome != LemkeOutcome::Solved; ++attempt) {
-        const Eigen::VectorXd d = spread_covering_vector(size, attempt);
-        s = dense ? solve_lemke(lcp->M(), lcp->q(), d, max_pivots)
-                  : solve_sparse_lemke(lcp->sparse_M(), lcp->q(), attempt == 0 ? guess : std::vector<char>{}, d, max_pivots);
-        lemke_pivots_ += s.pivots;
-    }
+    const LemkeSolution s = dense ? dense_lemke(*lcp) : sparse_lemke(*lcp, lcp->basis_guess(states, x));
     if (s.outcome != LemkeOutcome::Solved) {
         note_ = s.outcome == LemkeOutcome::RayTermination  ? "Lemke stage ended on a ray"
                 : s.outcome == LemkeOutcome::SingularBasis ? "Lemke stage's basis factor broke down"
+                : s.outcome == LemkeOutcome::Inaccurate    ? "Lemke stage's answer was inaccurate"
                                                            : "Lemke stage ran out of pivots";
         return Stage::Unfinished;
     }
@@ -146,6 +137,36 @@ ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& state
     states = lemke_states;
     x = lemke_x;
     return Stage::Finished;
+}
+
+/// Up to Tuning::kLemkeAttempts covering vectors, each with kLemkePivotsPerVariable pivots per
+/// variable.
+LemkeSolution ConsistentFriction::dense_lemke(const FrictionLcp& lcp) {
+    const int size = static_cast<int>(lcp.q().size());
+    LemkeSolution s;
+    for (int attempt = 0; attempt < tuning::kLemkeAttempts && s.outcome != LemkeOutcome::Solved; ++attempt) {
+        s = solve_lemke(lcp.M(), lcp.q(), spread_covering_vector(size, attempt), tuning::kLemkePivotsPerVariable * size + 10);
+        lemke_pivots_ += s.pivots;
+    }
+    return s;
+}
+
+/// First from the guessed basis, then from the slack basis with one spread covering vector after
+/// another while a path ends on a ray or an inaccurate answer, all within one budget (the piles' paths are long, and
+/// how long depends on the covering vector: docs/tuning.md).
+LemkeSolution ConsistentFriction::sparse_lemke(const FrictionLcp& lcp, const std::vector<char>& guess) {
+    const int size = static_cast<int>(lcp.q().size());
+    int budget = static_cast<int>(
+        std::min<long long>(static_cast<long long>(tuning::kSparseLemkePivotsPerVariable) * size + 10, tuning::kSparseLemkeMaxPivots));
+    LemkeSolution s;
+    for (int attempt = 0; attempt < tuning::kLemkeAttempts && budget > 0; ++attempt) {
+        s = solve_sparse_lemke(lcp.sparse_M(), lcp.q(), attempt == 0 ? guess : std::vector<char>{},
+                               spread_covering_vector(size, attempt), budget);
+        lemke_pivots_ += s.pivots;
+        budget -= s.pivots;
+        if (s.outcome == LemkeOutcome::Solved || s.outcome == LemkeOutcome::MaxPivots) break;
+    }
+    return s;
 }
 
 /// 3 variables per friction row, 2 per other row bounded on both sides, 1 per one-sided row.

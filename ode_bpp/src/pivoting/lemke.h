@@ -20,6 +20,7 @@ enum class LemkeOutcome {
     RayTermination, ///< no blocking row for the entering variable: M is outside Lemke's class here
     MaxPivots,      ///< the pivot budget ran out
     SingularBasis,  ///< sparse_lemke.h: a refactorization found the basis singular (rounding)
+    Inaccurate,     ///< sparse_lemke.h: the path ended, but its answer violates the LCP beyond rounding
 };
 
 struct LemkeSolution {

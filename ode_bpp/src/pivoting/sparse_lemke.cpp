@@ -15,6 +15,9 @@ namespace {
 constexpr double kPivotTolerance = 1e-11;
 /// Ratios and lexicographic keys within this relative distance of the least are ties.
 constexpr double kTieTolerance = 1e-12;
+/// An answer whose complementarity is violated by more than this, relative to the LCP's scale
+/// (|q| + |M||z|), came through a nearly singular basis and is rejected.
+constexpr double kAnswerTolerance = 1e-9;
 /// Eta vectors kept before the basis is factored afresh: each adds N to every solve, a
 /// refactorization costs about as much as the solves of this many pivots on the piles' LCPs.
 constexpr int kRefactorPeriod = 50;
@@ -229,6 +232,16 @@ Eigen::VectorXd covering_vector(const Eigen::SparseMatrix<double>& M, const std:
     return d;
 }
 
+/// max_i max(-z_i, -u_i, |min(z_i, u_i)|) with u = M z + q, relative to max(1, |q| + |M||z|).
+double violation(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& q, const Eigen::VectorXd& z) {
+    const Eigen::VectorXd u = M * z + q;
+    const Eigen::VectorXd scale = q.cwiseAbs() + M.cwiseAbs() * z.cwiseAbs();
+    double worst = 0;
+    for (Eigen::Index i = 0; i < z.size(); ++i)
+        worst = std::max({worst, -z[i], -u[i], std::abs(std::min(z[i], u[i]))});
+    return worst / std::max(1.0, scale.maxCoeff());
+}
+
 }  // namespace
 
 LemkeSolution solve_sparse_lemke(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& q,
@@ -275,8 +288,9 @@ LemkeSolution solve_sparse_lemke(const Eigen::SparseMatrix<double>& M, const Eig
             return s;
         }
         if (leaving == t.artificial()) {
+            t.refresh();  // the answer from a fresh factor rather than through up to kRefactorPeriod etas
             t.extract(s);
-            s.outcome = LemkeOutcome::Solved;
+            s.outcome = violation(M, q, s.z) <= kAnswerTolerance ? LemkeOutcome::Solved : LemkeOutcome::Inaccurate;
             return s;
         }
         entering = t.complement(leaving);

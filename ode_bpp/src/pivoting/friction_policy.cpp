@@ -139,7 +139,7 @@ ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& state
     return Stage::Finished;
 }
 
-/// Up to Tuning::kLemkeAttempts covering vectors, each with kLemkePivotsPerVariable pivots per
+/// Up to tuning::kLemkeAttempts covering vectors, each with kLemkePivotsPerVariable pivots per
 /// variable.
 LemkeSolution ConsistentFriction::dense_lemke(const FrictionLcp& lcp) {
     const int size = static_cast<int>(lcp.q().size());
@@ -152,8 +152,8 @@ LemkeSolution ConsistentFriction::dense_lemke(const FrictionLcp& lcp) {
 }
 
 /// First from the guessed basis, then from the slack basis with one spread covering vector after
-/// another while a path ends on a ray or an inaccurate answer, all within one budget (the piles' paths are long, and
-/// how long depends on the covering vector: docs/tuning.md).
+/// another while a path ends on a ray or an inaccurate answer, all within one budget (the piles'
+/// paths are long, and how long depends on the covering vector: docs/tuning.md).
 LemkeSolution ConsistentFriction::sparse_lemke(const FrictionLcp& lcp, const std::vector<char>& guess) {
     const int size = static_cast<int>(lcp.q().size());
     int budget = static_cast<int>(

@@ -7,7 +7,8 @@
 // so on 11 % of the captured winch frames (135 of 1,200), from ties that d = 1 makes in the ratio
 // test; with d spread over [0.5, 1.5) (spread_covering_vector) on 2 of 1,200, and a second spread
 // vector finished both. Dense, O(N^2) per pivot on the basis
-// inverse: a last resort for the few problems that block pivoting does not finish.
+// inverse: a last resort for the few problems that block pivoting does not finish; large sparse
+// LCPs go to sparse_lemke.h.
 #pragma once
 
 #include <Eigen/Dense>

@@ -3,18 +3,15 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <utility>
+
+#include "pivoting/lemke_rules.h"
 
 namespace ode_bpp::pivoting {
 
 namespace {
 
-/// As in lemke.cpp: entries below this fraction of a column's largest are rounding, not pivots.
-constexpr double kPivotTolerance = 1e-11;
-/// Ratios and lexicographic keys within this relative distance of the least are ties.
-constexpr double kTieTolerance = 1e-12;
 /// An answer whose complementarity is violated by more than this, relative to the LCP's scale
 /// (|q| + |M||z|), came through a nearly singular basis and is rejected.
 constexpr double kAnswerTolerance = 1e-9;
@@ -136,24 +133,11 @@ public:
 
     void column(int var, Eigen::VectorXd& c) const { basis_.column(var, c); }
 
-    /// The leaving row for the entering column c by the lexicographic minimum ratio rule, or -1
-    /// when no entry blocks (a ray). The artificial variable leaves whenever it ties.
+    /// The leaving row for the entering column c (lemke_rules.h), or -1 for a ray; the keys are
+    /// the columns of B^-1 B0, one solve each, computed only while rows tie.
     int ratio_test(const Eigen::VectorXd& c) const {
-        const double c_max = c.cwiseAbs().maxCoeff();
-        if (!(c_max > 0)) return -1;
-        double least = std::numeric_limits<double>::infinity();
-        for (int i = 0; i < n(); ++i)
-            if (c[i] > kPivotTolerance * c_max) least = std::min(least, ratio(i, c));
-        if (!std::isfinite(least)) return -1;
-        const double rhs_scale = kTieTolerance * rhs_.cwiseAbs().maxCoeff();
-        std::vector<int> ties;
-        for (int i = 0; i < n(); ++i)
-            if (c[i] > kPivotTolerance * c_max && ratio(i, c) <= least * (1 + kTieTolerance) + rhs_scale / c[i])
-                ties.push_back(i);
-        for (int i : ties)
-            if (basic(i) == artificial()) return i;
-        for (int k = 0; k < n() && ties.size() > 1; ++k) narrow_lexicographically(k, c, ties);
-        return ties.front();
+        return lexicographic_ratio_test(rhs_, c, basis_.variables(),
+                                        [this](int k, Eigen::VectorXd& key) { basis_.column(start_[k], key); });
     }
 
     /// Exchanges the basic variable of row r for `entering`, whose column is c; refactors when
@@ -172,38 +156,10 @@ public:
         Eigen::VectorXd correction = basis_.residual(q_, xb);
         basis_.solve(correction);
         xb += correction;
-        const int N = n();
-        s.z = Eigen::VectorXd::Zero(N);
-        s.z_basic.assign(static_cast<std::size_t>(N), 0);
-        s.u_basic.assign(static_cast<std::size_t>(N), 0);
-        for (int r = 0; r < N; ++r) {
-            const int var = basic(r);
-            if (var < N) {
-                s.u_basic[var] = 1;
-            } else if (var < 2 * N) {
-                s.z_basic[var - N] = 1;
-                s.z[var - N] = std::max(0.0, xb[r]);
-            }
-        }
+        read_lemke_solution(basis_.variables(), xb, s);
     }
 
 private:
-    double ratio(int i, const Eigen::VectorXd& c) const { return std::max(rhs_[i], 0.0) / c[i]; }
-
-    /// Keeps the rows of `ties` whose key (B^-1 B0)(i, k) / c_i is least.
-    void narrow_lexicographically(int k, const Eigen::VectorXd& c, std::vector<int>& ties) const {
-        Eigen::VectorXd key;
-        basis_.column(start_[k], key);  // B^-1 times B0's column k
-        double least = std::numeric_limits<double>::infinity(), largest = 0;
-        for (int i : ties) {
-            least = std::min(least, key[i] / c[i]);
-            largest = std::max(largest, std::abs(key[i] / c[i]));
-        }
-        const double slack = kTieTolerance * largest;
-        ties.erase(std::remove_if(ties.begin(), ties.end(), [&](int i) { return key[i] / c[i] > least + slack; }),
-                   ties.end());
-    }
-
     const Eigen::VectorXd& q_;
     std::vector<int> start_;
     SparseBasis basis_;

@@ -12,6 +12,7 @@
 #include "ode_bpp/residuals.h"
 #include "pivoting/friction_lcp.h"
 #include "pivoting/lemke.h"
+#include "pivoting/sparse_lemke.h"
 #include "linalg/symmetric_rows.h"
 #include "problems/generators.h"
 #include "test_pivoting_support.h"
@@ -123,7 +124,97 @@ TEST(Lemke, SpreadCoveringVectorsArePositiveAndDiffer) {
     EXPECT_EQ(a, spread_covering_vector(50, 0));  // reproducible
 }
 
+/// A sparse positive definite M: a random banded G G' plus a diagonal.
+Eigen::SparseMatrix<double> banded_spd(int n, int band, std::uint64_t seed) {
+    const Eigen::MatrixXd R = random_matrix(n, band, seed);
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < band && i + k < n; ++k) G(i, i + k) = R(i, k);
+    const Eigen::MatrixXd M = G * G.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n);
+    return M.sparseView();
+}
+
+TEST(SparseLemke, SolvesWhatTheDenseLemkeSolves) {
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+        const int n = 60 + 20 * static_cast<int>(seed);
+        const Eigen::SparseMatrix<double> M = banded_spd(n, 4, seed);
+        const Eigen::VectorXd q = random_matrix(n, 1, seed + 50).col(0).array() - 0.7;  // most rows end positive
+        const LemkeSolution s = solve_sparse_lemke(M, q, {}, spread_covering_vector(n, 0), 20 * n);
+        ASSERT_EQ(s.outcome, LemkeOutcome::Solved) << "seed " << seed;
+        EXPECT_LT(lcp_violation(Eigen::MatrixXd(M), q, s.z), 1e-11) << "seed " << seed;
+        const LemkeSolution dense = solve_lemke(Eigen::MatrixXd(M), q, spread_covering_vector(n, 0), 20 * n);
+        ASSERT_EQ(dense.outcome, LemkeOutcome::Solved);
+        EXPECT_LT((s.z - dense.z).cwiseAbs().maxCoeff(), 1e-9 * (1 + dense.z.cwiseAbs().maxCoeff())) << "seed " << seed;
+        EXPECT_GT(s.pivots, 50) << "seed " << seed;  // long enough for several refactorizations
+    }
+}
+
+TEST(SparseLemke, AGuessThatIsTheAnswerEndsTheMomentItStarts) {
+    const int n = 120;
+    const Eigen::SparseMatrix<double> M = banded_spd(n, 5, 11);
+    const Eigen::VectorXd q = random_matrix(n, 1, 12).col(0);
+    const LemkeSolution cold = solve_sparse_lemke(M, q, {}, spread_covering_vector(n, 0), 20 * n);
+    ASSERT_EQ(cold.outcome, LemkeOutcome::Solved);
+    const LemkeSolution warm = solve_sparse_lemke(M, q, cold.z_basic, spread_covering_vector(n, 1), 20 * n);
+    ASSERT_EQ(warm.outcome, LemkeOutcome::Solved);
+    EXPECT_EQ(warm.pivots, 0);
+    EXPECT_LT((warm.z - cold.z).cwiseAbs().maxCoeff(), 1e-10 * (1 + cold.z.cwiseAbs().maxCoeff()));
+    // a guess with a few wrong entries takes a few pivots, far fewer than the cold path
+    std::vector<char> near = cold.z_basic;
+    for (int i = 0; i < n; i += 20) near[i] = !near[i];
+    const LemkeSolution close = solve_sparse_lemke(M, q, near, spread_covering_vector(n, 1), 20 * n);
+    ASSERT_EQ(close.outcome, LemkeOutcome::Solved);
+    EXPECT_LT(lcp_violation(Eigen::MatrixXd(M), q, close.z), 1e-11);
+    EXPECT_LT(close.pivots, cold.pivots / 2);
+}
+
+TEST(SparseLemke, EndsOnARayWhenNoSolutionExists) {
+    const Eigen::MatrixXd M = -Eigen::MatrixXd::Identity(1, 1);
+    const Eigen::VectorXd q = -Eigen::VectorXd::Ones(1);
+    EXPECT_EQ(solve_sparse_lemke(M.sparseView(), q, {}, Eigen::VectorXd::Ones(1), 10).outcome,
+              LemkeOutcome::RayTermination);
+}
+
 using test::DriverLcp;
+
+TEST(FrictionLcp, SparseFormIsTheDenseForm) {
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+        const auto p = problems::random_boxed_mlcp(40, 0, 8, 1e4, seed);
+        DriverLcp s(p);
+        std::string why;
+        const auto dense = FrictionLcp::build(s.lcp, s.friction.view(), why);
+        const auto sparse = FrictionLcp::build_sparse(s.lcp, s.friction.view(), why);
+        ASSERT_TRUE(dense.has_value() && sparse.has_value()) << why;
+        EXPECT_LT((Eigen::MatrixXd(sparse->sparse_M()) - dense->M()).cwiseAbs().maxCoeff(), 1e-12 * dense->M().cwiseAbs().maxCoeff());
+        EXPECT_LT((sparse->q() - dense->q()).cwiseAbs().maxCoeff(), 1e-12 * (1 + dense->q().cwiseAbs().maxCoeff()));
+    }
+    const auto with_unbounded = problems::random_boxed_mlcp(40, 4, 8, 1e4, 1);
+    DriverLcp s(with_unbounded);
+    std::string why;
+    EXPECT_FALSE(FrictionLcp::build_sparse(s.lcp, s.friction.view(), why).has_value());
+    EXPECT_NE(why.find("unbounded"), std::string::npos) << why;
+}
+
+TEST(FrictionLcp, TheGuessFromAnAnswerIsItsBasis) {
+    const auto p = problems::random_boxed_mlcp(60, 0, 12, 1e3, 5);
+    DriverLcp s(p);
+    std::string why;
+    const auto lcp = FrictionLcp::build_sparse(s.lcp, s.friction.view(), why);
+    ASSERT_TRUE(lcp.has_value()) << why;
+    const int N = static_cast<int>(lcp->q().size());
+    const LemkeSolution cold = solve_sparse_lemke(lcp->sparse_M(), lcp->q(), {}, spread_covering_vector(N, 0), 10 * N);
+    ASSERT_EQ(cold.outcome, LemkeOutcome::Solved);
+    std::vector<double> x;
+    std::vector<RowState> states;
+    lcp->recover(cold, x, states);
+    const LemkeSolution warm =
+        solve_sparse_lemke(lcp->sparse_M(), lcp->q(), lcp->basis_guess(states, x), spread_covering_vector(N, 1), 10 * N);
+    ASSERT_EQ(warm.outcome, LemkeOutcome::Solved);
+    EXPECT_LE(warm.pivots, cold.pivots / 10) << "cold: " << cold.pivots;  // degenerate rows may need a pivot or two
+    std::vector<double> x_warm;
+    lcp->recover(warm, x_warm, states);
+    EXPECT_LT(compute_residuals(p, ConstStrided{x_warm.data(), 1}).scaled_natural, 1e-8);
+}
 
 TEST(FrictionLcp, LemkesAnswerSolvesTheMlcpWithBoundsFromItsOwnNormals) {
     for (std::uint64_t seed = 1; seed <= 8; ++seed) {

@@ -32,6 +32,24 @@ std::optional<FrictionLcp> FrictionLcp::build(const BoxedLcp& lcp, const Frictio
     return f;
 }
 
+std::optional<FrictionLcp> FrictionLcp::build_sparse(const BoxedLcp& lcp, const FrictionRows& friction, std::string& why) {
+    FrictionLcp f;
+    if (!f.classify(lcp, friction, why)) return std::nullopt;
+    f.number_variables();
+    if (!f.unbounded_.empty()) {
+        why = "the island has unbounded rows (their Schur complement is dense)";
+        return std::nullopt;
+    }
+    f.G_.resize(0, static_cast<Eigen::Index>(f.bounded_.size()));
+    f.g_.resize(0);
+    f.assemble_sparse(lcp);
+    if (!f.scale_.allFinite() || !f.q_.allFinite()) {
+        why = "the bounded rows' block of A is not positive definite";
+        return std::nullopt;
+    }
+    return f;
+}
+
 bool FrictionLcp::classify(const BoxedLcp& lcp, const FrictionRows& friction, std::string& why) {
     const int n = lcp.n();
     rows_.assign(static_cast<std::size_t>(n), Row{});
@@ -129,14 +147,9 @@ Eigen::VectorXd FrictionLcp::offset_x0() const {
     return x0;
 }
 
-void FrictionLcp::assemble(const Eigen::MatrixXd& S, const Eigen::VectorXd& b_reduced) {
-    const int N = num_y_ + num_l_;
-    M_ = Eigen::MatrixXd::Zero(N, N);
-    q_ = Eigen::VectorXd::Zero(N);
-    // u_y = Q'(S (x0 + Q y) - b~) + E l, Q a signed selection: (Q'SQ)_kl = sign_k sign_l S(row_k, row_l)
-    const Eigen::VectorXd w0 = S * offset_x0() - b_reduced;
-    std::vector<int> row_of(static_cast<std::size_t>(num_y_));
-    std::vector<double> sign(static_cast<std::size_t>(num_y_));
+void FrictionLcp::y_rows(std::vector<int>& row_of, std::vector<double>& sign) const {
+    row_of.assign(static_cast<std::size_t>(num_y_), 0);
+    sign.assign(static_cast<std::size_t>(num_y_), 1.0);
     for (int i : bounded_) {
         const Row& r = rows_[i];
         row_of[r.y] = r.local;
@@ -146,29 +159,93 @@ void FrictionLcp::assemble(const Eigen::MatrixXd& S, const Eigen::VectorXd& b_re
             sign[r.y + 1] = -1.0;
         }
     }
+}
+
+template <class Add>
+void FrictionLcp::add_bound_rows(Add add) {
+    for (int i : bounded_) {
+        const Row& r = rows_[i];
+        if (r.kind == Kind::Box) {  // v = (hi - lo) - y
+            add(r.y, r.l, 1.0);
+            add(r.l, r.y, -1.0);
+            q_[r.l] = r.width;
+        } else if (r.kind == Kind::Friction) {  // v = mu (lo_n + y_n) - y+ - y-
+            const Row& nr = rows_[r.normal];
+            add(r.y, r.l, 1.0);
+            add(r.y + 1, r.l, 1.0);
+            add(r.l, r.y, -1.0);
+            add(r.l, r.y + 1, -1.0);
+            add(r.l, nr.y, r.mu);
+            q_[r.l] = r.mu * nr.value;
+        }
+    }
+}
+
+void FrictionLcp::assemble(const Eigen::MatrixXd& S, const Eigen::VectorXd& b_reduced) {
+    const int N = num_y_ + num_l_;
+    M_ = Eigen::MatrixXd::Zero(N, N);
+    q_ = Eigen::VectorXd::Zero(N);
+    // u_y = Q'(S (x0 + Q y) - b~) + E l, Q a signed selection: (Q'SQ)_kl = sign_k sign_l S(row_k, row_l)
+    const Eigen::VectorXd w0 = S * offset_x0() - b_reduced;
+    std::vector<int> row_of;
+    std::vector<double> sign;
+    y_rows(row_of, sign);
     for (int l = 0; l < num_y_; ++l) {
         for (int k = 0; k < num_y_; ++k) M_(k, l) = sign[k] * sign[l] * S(row_of[k], row_of[l]);
         q_[l] = sign[l] * w0[row_of[l]];
     }
-    for (int i : bounded_) {
-        const Row& r = rows_[i];
-        if (r.kind == Kind::Box) {  // v = (hi - lo) - y
-            M_(r.y, r.l) = 1;
-            M_(r.l, r.y) = -1;
-            q_[r.l] = r.width;
-        } else if (r.kind == Kind::Friction) {  // v = mu (lo_n + y_n) - y+ - y-
-            const Row& nr = rows_[r.normal];
-            M_(r.y, r.l) = M_(r.y + 1, r.l) = 1;
-            M_(r.l, r.y) = M_(r.l, r.y + 1) = -1;
-            M_(r.l, nr.y) += r.mu;
-            q_[r.l] = r.mu * nr.value;
-        }
-    }
+    add_bound_rows([this](int k, int l, double v) { M_(k, l) += v; });
+    balance_scale(M_.diagonal().head(num_y_));
     balance();
 }
 
-void FrictionLcp::balance() {
-    // M <- D M D, q <- D q, z = D z': u' = D u keeps the complementarity and M's copositivity.
+void FrictionLcp::assemble_sparse(const BoxedLcp& lcp) {
+    const int N = num_y_ + num_l_;
+    q_ = Eigen::VectorXd::Zero(N);
+    // S = A_RR + shift I (no unbounded rows), w0 = (A x0 + A_RK x_K) - b on R: one product with x
+    // holding x0 on R and x_K on K
+    const linalg::SymmetricRows& A = *lcp.A;
+    std::vector<double> x_full(rows_.size(), 0.0), w_full;
+    for (std::size_t i = 0; i < rows_.size(); ++i)
+        if (rows_[i].kind != Kind::Unbounded) x_full[i] = rows_[i].value;
+    A.multiply(x_full, lcp.shift, w_full);
+    std::vector<int> row_of;
+    std::vector<double> sign;
+    y_rows(row_of, sign);
+    std::vector<Eigen::Triplet<double>> entries;
+    const auto vars = [&](int i) {  // the y variables of row i: first and count
+        const Row& r = rows_[i];
+        return std::pair<int, int>(r.y, r.kind == Kind::Friction ? 2 : 1);
+    };
+    const auto couple = [&](int i, int j, double a) {
+        const auto [yi, ci] = vars(i);
+        const auto [yj, cj] = vars(j);
+        for (int k = yi; k < yi + ci; ++k)
+            for (int l = yj; l < yj + cj; ++l) entries.emplace_back(k, l, sign[k] * sign[l] * a);
+    };
+    Eigen::VectorXd y_diagonal(num_y_);
+    for (int i : bounded_) {
+        const double a_ii = A.diag(i) + lcp.shift;
+        couple(i, i, a_ii);
+        const auto [yi, ci] = vars(i);
+        for (int k = yi; k < yi + ci; ++k) {
+            y_diagonal[k] = a_ii;
+            q_[k] = sign[k] * (w_full[i] - lcp.b[i]);
+        }
+        for (int e = A.row_begin(i); e < A.row_end(i); ++e) {
+            const int j = A.col(e);
+            if (rows_[j].kind != Kind::Known) couple(i, j, A.val(e));
+        }
+    }
+    add_bound_rows([&entries](int k, int l, double v) { entries.emplace_back(k, l, v); });
+    balance_scale(y_diagonal);
+    for (auto& t : entries) t = Eigen::Triplet<double>(t.row(), t.col(), scale_[t.row()] * t.value() * scale_[t.col()]);
+    sparse_M_.resize(N, N);
+    sparse_M_.setFromTriplets(entries.begin(), entries.end());
+    q_ = scale_.asDiagonal() * q_;
+}
+
+void FrictionLcp::balance_scale(const Eigen::VectorXd& y_diagonal) {
     // D = 1/sqrt(M_kk) on y gives Q'SQ a unit diagonal (its scale spans the mass ratio); a
     // multiplier l is a force of its rows' scale, D_l = sqrt(M_kk) of its first y, which keeps
     // the couplings +-1 and mu near one. On 300 winch frames (c = 1e-10) unbalanced answers were
@@ -176,11 +253,40 @@ void FrictionLcp::balance() {
     // balanced, 2 frames and no ray (the linked solve that follows polishes what is left).
     scale_.resize(q_.size());
     for (int k = 0; k < num_y_; ++k)  // S is SPD, so M_kk > 0; otherwise NaN, which build() rejects
-        scale_[k] = M_(k, k) > 0 ? 1 / std::sqrt(M_(k, k)) : std::numeric_limits<double>::quiet_NaN();
+        scale_[k] = y_diagonal[k] > 0 ? 1 / std::sqrt(y_diagonal[k]) : std::numeric_limits<double>::quiet_NaN();
     for (const Row& r : rows_)
         if (r.l >= 0) scale_[r.l] = 1 / scale_[r.y];
+}
+
+void FrictionLcp::balance() {
+    // M <- D M D, q <- D q, z = D z': u' = D u keeps the complementarity and M's copositivity.
     M_ = scale_.asDiagonal() * M_ * scale_.asDiagonal();
     q_ = scale_.asDiagonal() * q_;
+}
+
+std::vector<char> FrictionLcp::basis_guess(const std::vector<RowState>& states, const std::vector<double>& x) const {
+    std::vector<char> z_basic(static_cast<std::size_t>(num_y_ + num_l_), 0);
+    for (int i : bounded_) {
+        const Row& r = rows_[i];
+        const RowState st = states[i];
+        switch (r.kind) {
+            case Kind::Lower:
+            case Kind::Upper: z_basic[r.y] = st == RowState::Free; break;
+            case Kind::Box:
+                z_basic[r.y] = st != RowState::AtLo;
+                z_basic[r.l] = st == RowState::AtHi;
+                break;
+            case Kind::Friction: {  // at a bound: l > 0 and the y of its sign; free: the y of x's sign
+                const bool at_bound = st != RowState::Free;
+                const bool plus = at_bound ? st == RowState::AtHi : x[i] >= 0;
+                z_basic[plus ? r.y : r.y + 1] = 1;
+                z_basic[r.l] = at_bound;
+                break;
+            }
+            default: break;
+        }
+    }
+    return z_basic;
 }
 
 void FrictionLcp::recover(const LemkeSolution& s, std::vector<double>& x, std::vector<RowState>& states) const {

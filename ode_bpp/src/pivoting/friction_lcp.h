@@ -19,6 +19,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,9 +46,21 @@ public:
     /// infinite mu, or A_UU not positive definite.
     static std::optional<FrictionLcp> build(const BoxedLcp& lcp, const FrictionRows& friction, std::string& why);
 
+    /// The same LCP with M sparse (sparse_M(); M() stays empty), for problems without unbounded
+    /// rows: then S = A_RR keeps A's sparsity, and M has O(nnz(A)) entries. Returns nothing, with
+    /// the reason in why, where build() would, or when the problem has unbounded rows.
+    static std::optional<FrictionLcp> build_sparse(const BoxedLcp& lcp, const FrictionRows& friction, std::string& why);
+
     /// The LCP, balanced by a positive diagonal D (M = D M0 D, q = D q0, z0 = D z).
     const Eigen::MatrixXd& M() const { return M_; }
+    const Eigen::SparseMatrix<double>& sparse_M() const { return sparse_M_; }
     const Eigen::VectorXd& q() const { return q_; }
+
+    /// A complementary basis guessed from an index set and answer of the MLCP (states, x: n
+    /// entries each, permuted space): z_k basic (N flags) for every LCP variable the guess makes
+    /// positive, its slack u_k basic elsewhere. Lemke's path started there (sparse_lemke.h) ends
+    /// at once when the guess is an answer.
+    std::vector<char> basis_guess(const std::vector<RowState>& states, const std::vector<double>& x) const;
 
     /// x (out, n entries, permuted space) and the index set it implies (out, n): rows whose
     /// slack is nonbasic are tight, every other row free.
@@ -70,6 +83,14 @@ private:
     void number_variables();
     bool eliminate_unbounded(const Eigen::MatrixXd& A, const BoxedLcp& lcp, std::string& why);
     void assemble(const Eigen::MatrixXd& S, const Eigen::VectorXd& b_reduced);
+    void assemble_sparse(const BoxedLcp& lcp);
+    /// Each y variable's row of R (row_of) and sign of Q (sign), num_y_ entries each.
+    void y_rows(std::vector<int>& row_of, std::vector<double>& sign) const;
+    /// The entries of M outside Q'SQ (add(k, l, value)) and q's entries of the multipliers l.
+    template <class Add>
+    void add_bound_rows(Add add);
+    /// D of balance() from the diagonal of Q'SQ (num_y_ entries).
+    void balance_scale(const Eigen::VectorXd& y_diagonal);
     void balance();
     Eigen::VectorXd offset_x0() const;
 
@@ -79,6 +100,7 @@ private:
     Eigen::MatrixXd G_;   ///< A_UU^-1 A_UR
     Eigen::VectorXd g_;   ///< A_UU^-1 (b_U - A_UK x_K)
     Eigen::MatrixXd M_;
+    Eigen::SparseMatrix<double> sparse_M_;
     Eigen::VectorXd q_;
     Eigen::VectorXd scale_;  ///< D of the balanced LCP: z = D z'
 };

@@ -7,6 +7,7 @@
 #include "pivoting/friction_lcp.h"
 #include "pivoting/friction_update.h"
 #include "pivoting/lemke.h"
+#include "pivoting/sparse_lemke.h"
 #include "pivoting/tuning.h"
 
 namespace ode_bpp::pivoting {
@@ -102,25 +103,25 @@ ConsistentFriction::Stage ConsistentFriction::linked_solve(std::vector<RowState>
 ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& states, std::vector<double>& x) {
     if (lemke_tried_ || !tuning_.lemke_friction) return Stage::Unfinished;
     lemke_tried_ = true;
-    if (lcp_.n() > tuning::kLemkeMaxRows || lemke_variables_at_most() > tuning::kLemkeMaxVariables) {
-        note_ = "Lemke stage skipped: the island is too large for a dense LCP";
+    const int variables = lemke_variables_at_most();
+    const bool dense = lcp_.n() <= tuning::kLemkeMaxRows && variables <= tuning::kLemkeMaxVariables;
+    if (!dense && variables > tuning::kSparseLemkeMaxVariables) {
+        note_ = "Lemke stage skipped: the island is too large even for the sparse Lemke stage";
         return Stage::Unfinished;
     }
     std::string why;
-    const std::optional<FrictionLcp> lcp = FrictionLcp::build(lcp_, friction_.view(), why);
+    const std::optional<FrictionLcp> lcp =
+        dense ? FrictionLcp::build(lcp_, friction_.view(), why) : FrictionLcp::build_sparse(lcp_, friction_.view(), why);
     if (!lcp) {
         note_ = "Lemke stage skipped: " + why;
         return Stage::Unfinished;
     }
-    const int size = static_cast<int>(lcp->q().size());
-    LemkeSolution s;
-    for (int attempt = 0; attempt < tuning::kLemkeAttempts && s.outcome != LemkeOutcome::Solved; ++attempt) {
-        s = solve_lemke(lcp->M(), lcp->q(), spread_covering_vector(size, attempt),
-                        tuning::kLemkePivotsPerVariable * size + 10);
-        lemke_pivots_ += s.pivots;
-    }
+    const LemkeSolution s = dense ? dense_lemke(*lcp) : sparse_lemke(*lcp, lcp->basis_guess(states, x));
     if (s.outcome != LemkeOutcome::Solved) {
-        note_ = s.outcome == LemkeOutcome::RayTermination ? "Lemke stage ended on a ray" : "Lemke stage ran out of pivots";
+        note_ = s.outcome == LemkeOutcome::RayTermination  ? "Lemke stage ended on a ray"
+                : s.outcome == LemkeOutcome::SingularBasis ? "Lemke stage's basis factor broke down"
+                : s.outcome == LemkeOutcome::Inaccurate    ? "Lemke stage's answer was inaccurate"
+                                                           : "Lemke stage ran out of pivots";
         return Stage::Unfinished;
     }
     std::vector<RowState> lemke_states;
@@ -136,6 +137,36 @@ ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& state
     states = lemke_states;
     x = lemke_x;
     return Stage::Finished;
+}
+
+/// Up to tuning::kLemkeAttempts covering vectors, each with kLemkePivotsPerVariable pivots per
+/// variable.
+LemkeSolution ConsistentFriction::dense_lemke(const FrictionLcp& lcp) {
+    const int size = static_cast<int>(lcp.q().size());
+    LemkeSolution s;
+    for (int attempt = 0; attempt < tuning::kLemkeAttempts && s.outcome != LemkeOutcome::Solved; ++attempt) {
+        s = solve_lemke(lcp.M(), lcp.q(), spread_covering_vector(size, attempt), tuning::kLemkePivotsPerVariable * size + 10);
+        lemke_pivots_ += s.pivots;
+    }
+    return s;
+}
+
+/// First from the guessed basis, then from the slack basis with one spread covering vector after
+/// another while a path ends on a ray or an inaccurate answer, all within one budget (the piles'
+/// paths are long, and how long depends on the covering vector: docs/tuning.md).
+LemkeSolution ConsistentFriction::sparse_lemke(const FrictionLcp& lcp, const std::vector<char>& guess) {
+    const int size = static_cast<int>(lcp.q().size());
+    int budget = static_cast<int>(
+        std::min<long long>(static_cast<long long>(tuning::kSparseLemkePivotsPerVariable) * size + 10, tuning::kSparseLemkeMaxPivots));
+    LemkeSolution s;
+    for (int attempt = 0; attempt < tuning::kLemkeAttempts && budget > 0; ++attempt) {
+        s = solve_sparse_lemke(lcp.sparse_M(), lcp.q(), attempt == 0 ? guess : std::vector<char>{},
+                               spread_covering_vector(size, attempt), budget);
+        lemke_pivots_ += s.pivots;
+        budget -= s.pivots;
+        if (s.outcome == LemkeOutcome::Solved || s.outcome == LemkeOutcome::MaxPivots) break;
+    }
+    return s;
 }
 
 /// 3 variables per friction row, 2 per other row bounded on both sides, 1 per one-sided row.

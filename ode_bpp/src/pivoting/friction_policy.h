@@ -11,7 +11,9 @@
 #include "ode_bpp/solver.h"
 #include "pivoting/boxed_lcp.h"
 #include "pivoting/fixed_bound_solve.h"
+#include "pivoting/friction_lcp.h"
 #include "pivoting/friction_set.h"
+#include "pivoting/lemke.h"
 
 namespace ode_bpp::pivoting {
 
@@ -61,6 +63,9 @@ private:
 
     Stage linked_solve(std::vector<RowState>& states, std::vector<double>& x, bool from_answer);
     Stage lemke(std::vector<RowState>& states, std::vector<double>& x);
+    /// Lemke's path on the dense friction LCP, and on the sparse one (guess: its starting basis).
+    LemkeSolution dense_lemke(const FrictionLcp& lcp);
+    LemkeSolution sparse_lemke(const FrictionLcp& lcp, const std::vector<char>& guess);
     PolicyOutcome outer_rounds(std::vector<RowState>& states, std::vector<double>& x, bool budget_spent);
     /// An upper bound of the friction LCP's size (friction_lcp.h).
     int lemke_variables_at_most() const;

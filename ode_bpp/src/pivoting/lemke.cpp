@@ -2,17 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+
+#include "pivoting/lemke_rules.h"
 
 namespace ode_bpp::pivoting {
 
 namespace {
 
-/// A column entry blocks the ratio test only above this fraction of the column's largest entry:
-/// smaller ones are rounding of structural zeros of B^-1 [I -M -d].
-constexpr double kPivotTolerance = 1e-11;
-/// Ratios and lexicographic keys within this relative distance of the least are ties.
-constexpr double kTieTolerance = 1e-12;
 /// B^-1 is updated in product form (rank one per pivot); it is rebuilt from the basis columns
 /// every max(kMinRefreshPeriod, N) pivots, which costs as much as N pivots (O(N^3)).
 constexpr int kMinRefreshPeriod = 64;
@@ -40,24 +36,10 @@ public:
             c.noalias() = -(Binv_ * d_);
     }
 
-    /// The leaving row for an entering column c by the lexicographic minimum ratio rule, or -1
-    /// when no entry blocks (a ray). The artificial variable leaves whenever it ties.
+    /// The leaving row for an entering column c (lemke_rules.h), or -1 for a ray; the keys are
+    /// the columns of B^-1 itself.
     int ratio_test(const Eigen::VectorXd& c) const {
-        const double c_max = c.cwiseAbs().maxCoeff();
-        if (!(c_max > 0)) return -1;
-        std::vector<int> ties;
-        double least = std::numeric_limits<double>::infinity();
-        for (int i = 0; i < n_; ++i)
-            if (c[i] > kPivotTolerance * c_max) least = std::min(least, ratio(i, c));
-        if (!std::isfinite(least)) return -1;
-        const double rhs_scale = kTieTolerance * rhs_.cwiseAbs().maxCoeff();
-        for (int i = 0; i < n_; ++i)
-            if (c[i] > kPivotTolerance * c_max && ratio(i, c) <= least * (1 + kTieTolerance) + rhs_scale / c[i])
-                ties.push_back(i);
-        for (int i : ties)
-            if (basis_[i] == artificial()) return i;
-        for (int k = 0; k < n_ && ties.size() > 1; ++k) narrow_lexicographically(k, c, ties);
-        return ties.front();
+        return lexicographic_ratio_test(rhs_, c, basis_, [this](int k, Eigen::VectorXd& key) { key = Binv_.col(k); });
     }
 
     /// Exchanges the basic variable of row r for `entering`, whose column is c.
@@ -89,35 +71,10 @@ public:
     void extract(LemkeSolution& s) const {
         Eigen::VectorXd xb = rhs_;
         xb += Binv_ * (q_ - basis_matrix() * xb);
-        s.z = Eigen::VectorXd::Zero(n_);
-        s.z_basic.assign(static_cast<std::size_t>(n_), 0);
-        s.u_basic.assign(static_cast<std::size_t>(n_), 0);
-        for (int r = 0; r < n_; ++r) {
-            const int var = basis_[r];
-            if (var < n_) {
-                s.u_basic[var] = 1;
-            } else if (var < 2 * n_) {
-                s.z_basic[var - n_] = 1;
-                s.z[var - n_] = std::max(0.0, xb[r]);
-            }
-        }
+        read_lemke_solution(basis_, xb, s);
     }
 
 private:
-    double ratio(int i, const Eigen::VectorXd& c) const { return std::max(rhs_[i], 0.0) / c[i]; }
-
-    /// Keeps the rows of `ties` whose key B^-1(i, k) / c_i is least (lexicographic rule, column k).
-    void narrow_lexicographically(int k, const Eigen::VectorXd& c, std::vector<int>& ties) const {
-        double least = std::numeric_limits<double>::infinity(), largest = 0;
-        for (int i : ties) {
-            least = std::min(least, Binv_(i, k) / c[i]);
-            largest = std::max(largest, std::abs(Binv_(i, k) / c[i]));
-        }
-        const double slack = kTieTolerance * largest;
-        ties.erase(std::remove_if(ties.begin(), ties.end(), [&](int i) { return Binv_(i, k) / c[i] > least + slack; }),
-                   ties.end());
-    }
-
     Eigen::MatrixXd basis_matrix() const {
         Eigen::MatrixXd B(n_, n_);
         for (int r = 0; r < n_; ++r) {

@@ -7,7 +7,8 @@
 // so on 11 % of the captured winch frames (135 of 1,200), from ties that d = 1 makes in the ratio
 // test; with d spread over [0.5, 1.5) (spread_covering_vector) on 2 of 1,200, and a second spread
 // vector finished both. Dense, O(N^2) per pivot on the basis
-// inverse: a last resort for the few problems that block pivoting does not finish.
+// inverse: a last resort for the few problems that block pivoting does not finish; large sparse
+// LCPs go to sparse_lemke.h.
 #pragma once
 
 #include <Eigen/Dense>
@@ -19,6 +20,8 @@ enum class LemkeOutcome {
     Solved,         ///< z solves the LCP (to the rounding of the basis inverse)
     RayTermination, ///< no blocking row for the entering variable: M is outside Lemke's class here
     MaxPivots,      ///< the pivot budget ran out
+    SingularBasis,  ///< sparse_lemke.h: a refactorization found the basis singular (rounding)
+    Inaccurate,     ///< sparse_lemke.h: the path ended, but its answer violates the LCP beyond rounding
 };
 
 struct LemkeSolution {

@@ -38,6 +38,14 @@ constexpr int kLemkeAttempts = 5;
 /// Largest friction LCP (variables) and island (rows) the dense Lemke stage takes on.
 constexpr int kLemkeMaxVariables = 1000;
 constexpr int kLemkeMaxRows = 1500;
+/// Above those, the sparse Lemke stage (sparse_lemke.h, islands without unbounded rows) takes
+/// friction LCPs of up to this many variables. Its pivot costs one sparse solve (0.1-0.5 ms at
+/// 1,000-2,700 variables on the shared machine), and its paths on piles are long (1.5-27 pivots
+/// per variable), so its cost is bounded by a pivot budget for all its covering vectors
+/// together: this many per variable, and at most kSparseLemkeMaxPivots (up to about 20 s).
+constexpr int kSparseLemkeMaxVariables = 3000;
+constexpr int kSparseLemkePivotsPerVariable = 40;
+constexpr int kSparseLemkeMaxPivots = 50000;
 
 // ---- the pivoting loop (pivot_loop.h) ----------------------------------------------------------
 /// Polish of a converged index set: rounds, and pivot steps per round.

@@ -1,8 +1,9 @@
 // One fixed-bound solve of a BPP method: the boxed LCP with its bounds as they stand (paper
 // Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
-// decides: the plain attempt from the warm start, the rescue continuation where that does not
-// converge within Tuning::rescue_after steps, the plain loop again where the rescue gives up,
-// and all of it again one rung up the breakdown ladder after a Cholesky breakdown.
+// decides: the plain attempt from the warm start; where that does not converge within
+// Tuning::rescue_after steps, Murty's single pivots on an incremental factor (single_pivots.h),
+// then the rescue continuation, then the plain loop again where the rescue gives up; and all of
+// it again one rung up the breakdown ladder after a Cholesky breakdown.
 //
 // Index space: the permuted space of the BoxedLcp and its FreeSolver.
 #pragma once
@@ -42,6 +43,7 @@ public:
 
 private:
     LoopOutcome at_target(std::vector<RowState>& states, std::vector<double>& x, int budget);
+    LoopOutcome by_single_pivots(std::vector<RowState>& states, std::vector<double>& x);
     LoopOutcome rescue(std::vector<RowState>& states, std::vector<double>& x, int budget);
     void run_continuation(std::vector<RowState>& states, std::vector<double>& x, int budget);
     /// Factors A + shift I unless the solver already holds that factor; false on breakdown.

@@ -1,0 +1,30 @@
+// Murty's single principal pivots on an incrementally updated dense factor of A_FF: where block
+// steps cycle (nearly redundant contact rows, box friction flipping between its bounds), each
+// pivot moves one row between F and T and so changes L_FF by one appended row or one removed
+// row (linalg/incremental_cholesky.h), O(|F|²), instead of a deletion from L0 or a
+// refactorization per step. Murty's rule (murty_rule.h) terminates finitely on A + shift I SPD.
+//
+// Index space: the permuted space of the BoxedLcp.
+#pragma once
+
+#include <vector>
+
+#include "ode_bpp/solver.h"
+#include "pivoting/boxed_lcp.h"
+#include "pivoting/pivot_loop.h"
+
+namespace ode_bpp::pivoting {
+
+/// True when single_pivots can take this problem on: fixed bounds only (no moving friction
+/// bounds), and small enough for a dense factor (tuning::kSinglePivotMaxRows).
+bool single_pivots_apply(const BoxedLcp& lcp);
+
+/// Runs Murty's method from `states` (a normalized index set, e.g. the pivoting loop's least
+/// infeasible one) on (A + lcp.shift I, b, lo, hi) for at most max_pivots single pivots.
+/// Converged: states and x (n entries) solve it to `tolerance` (classify_row.h). MaxIterations
+/// or Breakdown (an appended row dependent on the free set to machine precision): states as
+/// they came in, x unspecified. Each pivot counts in counters.pivots and counters.murty_pivots.
+LoopOutcome single_pivots(const BoxedLcp& lcp, double tolerance, int max_pivots, std::vector<RowState>& states,
+                          std::vector<double>& x, PivotCounters& counters);
+
+}  // namespace ode_bpp::pivoting

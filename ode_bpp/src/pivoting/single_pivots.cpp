@@ -41,7 +41,7 @@ public:
     LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x, int max_pivots) {
         ws_.entry = states;
         if (!factor_free_rows(states)) return give_up(states, LoopOutcome::Breakdown);
-        int least_count = n_ + 1;
+        int least_count = n_ + 1, last_progress = 0;
         for (int step = 0; step < max_pivots; ++step) {
             ++counters_.pivots;
             ++counters_.murty_pivots;
@@ -49,12 +49,9 @@ public:
             const auto diag = [this](int i) { return lcp_.A->diag(i) + lcp_.shift; };
             classify_rows(n_, states, x, ws_.it.w, ws_.it.lo, ws_.it.hi, diag, ws_.it.scale, tolerance_, ws_.inf);
             if (ws_.inf.count() == 0) return LoopOutcome::Converged;
-            const int k = choose(least_count);
-            const int row = ws_.inf.rows[k];
-            const RowState to = ws_.inf.flip_to[k];
-            if (to != RowState::Free) remove(row);
-            else if (!add(row)) return give_up(states, LoopOutcome::Breakdown);
-            states[row] = to;
+            if (ws_.inf.count() < least_count) last_progress = step;
+            else if (step - last_progress >= tuning::kSinglePivotPatience) break;
+            if (!flip(choose(least_count), states)) return give_up(states, LoopOutcome::Breakdown);
         }
         return give_up(states, LoopOutcome::MaxIterations);
     }
@@ -68,6 +65,16 @@ private:
         if (ws_.inf.count() >= least_count) return murty_choice(lcp_, ws_.inf);
         least_count = ws_.inf.count();
         return most_violated(ws_.inf);
+    }
+
+    /// Row inf.rows[k] changes set, and the factor with it; false on breakdown.
+    bool flip(int k, std::vector<RowState>& states) {
+        const int row = ws_.inf.rows[k];
+        const RowState to = ws_.inf.flip_to[k];
+        if (to != RowState::Free) remove(row);
+        else if (!add(row)) return false;
+        states[row] = to;
+        return true;
     }
 
     LoopOutcome give_up(std::vector<RowState>& states, LoopOutcome outcome) const {

@@ -34,9 +34,8 @@ constexpr int kMurtyPatience = 2;
 constexpr int kSinglePivotsPerRow = 4;
 constexpr int kSinglePivotsExtra = 50;
 /// Single pivots without a new least count of infeasible rows after which they give up and the
-/// rescue takes over (docs/tuning.md: such stretches were short where single pivots finish, and
-/// hundreds of pivots long on the winch's chain-drum contacts, which the rescue finishes).
-constexpr int kSinglePivotPatience = 60;
+/// rescue takes over (docs/tuning.md): a bound on what a hopeless island costs.
+constexpr int kSinglePivotPatience = 150;
 /// Largest island (rows) whose free set is factored densely for single pivots (8 n² bytes).
 constexpr int kSinglePivotMaxRows = 1500;
 

@@ -197,6 +197,9 @@ struct Result {
     int murty_pivots = 0;         ///< of which single (Murty) pivots
     int downdate_steps = 0;       ///< steps whose L_FF came from copying L and deleting rows
     int refactor_steps = 0;       ///< steps whose L_FF came from a (partial) refactorization
+    /// steps whose L_FF came from the single pivots' incremental factor (one row added or removed;
+    /// Tuning::single_pivots); pivots = downdate_steps + refactor_steps + update_steps
+    int update_steps = 0;
     int friction_rounds = 0;      ///< outer bound updates (consistent mode)
     /// Consistent mode: the linked solve (Tuning::link_friction) ran; friction_rounds counts
     /// the outer rounds after it (0 when it alone converged).

@@ -110,6 +110,7 @@ Result finish(PolicyOutcome outcome, const FixedBoundSolver& fixed, const PivotC
     r.murty_pivots = counters.murty_pivots;
     r.downdate_steps = counters.downdate_steps;
     r.refactor_steps = counters.refactor_steps;
+    r.update_steps = counters.update_steps;
     r.accuracy_refactors = counters.accuracy_refactors;
     r.rescues = counters.rescues;
     r.linked_friction = counters.linked_solves > 0;

@@ -56,7 +56,7 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
 /// Converged, MaxIterations or Breakdown; states as they came in unless Converged.
 LoopOutcome FixedBoundSolver::by_single_pivots(std::vector<RowState>& states, std::vector<double>& x) {
     const int max_pivots = tuning::kSinglePivotsPerRow * lcp_.n() + tuning::kSinglePivotsExtra;
-    const LoopOutcome outcome = single_pivots(lcp_, options_.tolerance, max_pivots, states, x, counters_);
+    const LoopOutcome outcome = single_pivots(lcp_, settings(max_pivots), states, x, counters_);
     if (outcome != LoopOutcome::Converged) return outcome;
     return pivot_fixed_bounds(lcp_, solver_, settings(std::max(1, options_.tuning.rescue_after)), states, x, counters_);
 }

@@ -35,6 +35,7 @@ struct PivotCounters {
     int murty_pivots = 0;
     int downdate_steps = 0;
     int refactor_steps = 0;
+    int update_steps = 0;        ///< single pivots on the incremental factor (single_pivots.h)
     int accuracy_refactors = 0;  ///< deleted factors rejected by the free-residual check
     int rescues = 0;             ///< fixed-bound solves finished by the driver's rescue continuation
     int linked_solves = 0;       ///< solves with moving friction bounds (BoxedLcp::friction_normal)

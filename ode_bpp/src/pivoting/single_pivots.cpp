@@ -34,8 +34,9 @@ struct Workspace {
 
 class SinglePivots {
 public:
-    SinglePivots(const BoxedLcp& lcp, double tolerance, PivotCounters& counters)
-        : lcp_(lcp), tolerance_(tolerance), counters_(counters), n_(lcp.n()), ws_(thread_workspace()) {
+    SinglePivots(const BoxedLcp& lcp, const PivotSettings& settings, PivotCounters& counters)
+        : lcp_(lcp), tolerance_(settings.tolerance), record_steps_(settings.record_steps), counters_(counters), n_(lcp.n()),
+          ws_(thread_workspace()) {
         ws_.it.lo = lcp.lo;
         ws_.it.hi = lcp.hi;
     }
@@ -55,6 +56,8 @@ public:
         for (int step = 0; step < max_pivots; ++step) {
             ++counters_.pivots;
             ++counters_.murty_pivots;
+            ++counters_.update_steps;
+            if (record_steps_) counters_.tight_per_step.push_back(n_ - ws_.factor.size());
             if (!solve(states, x)) return give_up(states, LoopOutcome::Breakdown);
             const auto diag = [this](int i) { return lcp_.A->diag(i) + lcp_.shift; };
             classify_rows(n_, states, x, ws_.it.w, ws_.it.lo, ws_.it.hi, diag, ws_.it.scale, tolerance_, ws_.inf);
@@ -153,6 +156,7 @@ private:
 
     const BoxedLcp& lcp_;
     const double tolerance_;
+    const bool record_steps_;
     PivotCounters& counters_;
     const int n_;
     Workspace& ws_;
@@ -164,9 +168,9 @@ bool single_pivots_apply(const BoxedLcp& lcp) {
     return !lcp.has_moving_bounds() && lcp.n() <= tuning::kSinglePivotMaxRows;
 }
 
-LoopOutcome single_pivots(const BoxedLcp& lcp, double tolerance, int max_pivots, std::vector<RowState>& states,
+LoopOutcome single_pivots(const BoxedLcp& lcp, const PivotSettings& settings, std::vector<RowState>& states,
                           std::vector<double>& x, PivotCounters& counters) {
-    return SinglePivots(lcp, tolerance, counters).run(states, x, max_pivots);
+    return SinglePivots(lcp, settings, counters).run(states, x, settings.max_pivots);
 }
 
 }  // namespace ode_bpp::pivoting

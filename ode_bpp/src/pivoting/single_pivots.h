@@ -19,12 +19,13 @@ namespace ode_bpp::pivoting {
 /// bounds), and small enough for a dense factor (tuning::kSinglePivotMaxRows).
 bool single_pivots_apply(const BoxedLcp& lcp);
 
-/// Runs Murty's method from `states` (a normalized index set, e.g. the pivoting loop's least
-/// infeasible one) on (A + lcp.shift I, b, lo, hi) for at most max_pivots single pivots.
-/// Converged: states and x (n entries) solve it to `tolerance` (classify_row.h). MaxIterations
-/// or Breakdown (an appended row dependent on the free set to machine precision): states as
-/// they came in, x unspecified. Each pivot counts in counters.pivots and counters.murty_pivots.
-LoopOutcome single_pivots(const BoxedLcp& lcp, double tolerance, int max_pivots, std::vector<RowState>& states,
+/// Runs single pivots from `states` (a normalized index set, e.g. the pivoting loop's least
+/// infeasible one) on (A + lcp.shift I, b, lo, hi) for at most settings.max_pivots pivots, to
+/// settings.tolerance (classify_row.h). Converged: states and x (n entries) solve it.
+/// MaxIterations (budget, or tuning::kSinglePivotPatience pivots without progress) or Breakdown
+/// (an appended row dependent on the free set to machine precision): states as they came in,
+/// x unspecified. Each pivot counts in counters.pivots, murty_pivots and update_steps.
+LoopOutcome single_pivots(const BoxedLcp& lcp, const PivotSettings& settings, std::vector<RowState>& states,
                           std::vector<double>& x, PivotCounters& counters);
 
 }  // namespace ode_bpp::pivoting

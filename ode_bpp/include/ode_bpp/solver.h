@@ -126,7 +126,7 @@ struct Tuning {
     /// delta falling adaptively from 1e-4 max_i A_ii to the problem's own, pivoting/regularization.h),
     /// with the rest of the budget; if that gives up, the plain attempt resumes. 0: no rescue.
     int rescue_after = 8;
-    /// Where that plain attempt does not converge, first Murty's single pivots from its least
+    /// Where that plain attempt does not converge, first single pivots from its least
     /// infeasible index set, each adding or removing one row of a dense factor of A_FF
     /// (pivoting/single_pivots.h), before the regularization continuation. Needs rescue_after > 0.
     bool single_pivots = true;

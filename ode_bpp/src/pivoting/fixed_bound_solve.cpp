@@ -26,9 +26,9 @@ FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<
     }
 }
 
-/// The plain loop gets Tuning::rescue_after steps; if it has not converged by then, Murty's
-/// single pivots on an incremental factor (single_pivots.h) go on from its least infeasible
-/// index set, with a budget of their own; where they do not finish, the rescue starts afresh
+/// The plain loop gets Tuning::rescue_after steps; if it has not converged by then, single
+/// pivots on an incremental factor (single_pivots.h) go on from its least infeasible index
+/// set, with a budget of their own; where they do not finish, the rescue starts afresh
 /// from the warm start with the rest of the budget, and should it give up, the plain loop
 /// resumes from its least infeasible index set. Converged, MaxIterations or Breakdown.
 LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vector<double>& x, int budget) {
@@ -51,7 +51,7 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
     return pivot_fixed_bounds(lcp_, solver_, settings(left()), states, x, counters_);
 }
 
-/// Murty's single pivots from states (single_pivots.h), then the plain loop from their answer,
+/// Single pivots from states (single_pivots.h), then the plain loop from their answer,
 /// which certifies it with the factor strategy's own solve and polishes it (usually one step).
 /// Converged, MaxIterations or Breakdown; states as they came in unless Converged.
 LoopOutcome FixedBoundSolver::by_single_pivots(std::vector<RowState>& states, std::vector<double>& x) {

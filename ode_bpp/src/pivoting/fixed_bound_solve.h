@@ -1,7 +1,7 @@
 // One fixed-bound solve of a BPP method: the boxed LCP with its bounds as they stand (paper
 // Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
 // decides: the plain attempt from the warm start; where that does not converge within
-// Tuning::rescue_after steps, Murty's single pivots on an incremental factor (single_pivots.h),
+// Tuning::rescue_after steps, single pivots on an incremental factor (single_pivots.h),
 // then the rescue continuation, then the plain loop again where the rescue gives up; and all of
 // it again one rung up the breakdown ladder after a Cholesky breakdown.
 //

@@ -1,8 +1,9 @@
-// Murty's single principal pivots on an incrementally updated dense factor of A_FF: where block
-// steps cycle (nearly redundant contact rows, box friction flipping between its bounds), each
-// pivot moves one row between F and T and so changes L_FF by one appended row or one removed
-// row (linalg/incremental_cholesky.h), O(|F|²), instead of a deletion from L0 or a
-// refactorization per step. Murty's rule (murty_rule.h) terminates finitely on A + shift I SPD.
+// Single principal pivots on an incrementally updated dense factor of A_FF: where block steps
+// cycle (nearly redundant contact rows, box friction flipping between its bounds), each pivot
+// moves one row between F and T and so changes L_FF by one appended row or one removed row
+// (linalg/incremental_cholesky.h), O(|F|²), instead of a deletion from L0 or a refactorization
+// per step. The most violated row flips, and Murty's rule (murty_rule.h) takes over where that
+// cycles, so that the method terminates finitely on A + shift I SPD (single_pivots.cpp).
 //
 // Index space: the permuted space of the BoxedLcp.
 #pragma once

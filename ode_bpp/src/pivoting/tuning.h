@@ -29,7 +29,7 @@ constexpr double kRescueFloor = 1e-12;
 constexpr int kMurtyPatience = 2;
 
 // ---- single pivots (single_pivots.h) -----------------------------------------------------------
-/// Murty's single pivots on the incremental dense factor may take this many pivots per row of
+/// Single pivots on the incremental dense factor may take this many pivots per row of
 /// the island, plus kSinglePivotsExtra, before the fixed-bound solve goes on to the rescue.
 constexpr int kSinglePivotsPerRow = 4;
 constexpr int kSinglePivotsExtra = 50;

@@ -8,6 +8,8 @@ install(TARGETS ode_bpp EXPORT ode_bppTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/ode_bpp/include/ode_bpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# ODE_BPP_API, generated with the library (ode_bpp/CMakeLists.txt)
+install(FILES ${CMAKE_BINARY_DIR}/ode_bpp/include/ode_bpp/export.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/ode_bpp)
 install(DIRECTORY ${ODE_ROOT}/include/ode DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(FILES ${ODE_ROOT}/lib/libode.so.8.0.2 ${ODE_ROOT}/lib/libode.so.8 ${ODE_ROOT}/lib/libode.so
   DESTINATION ${CMAKE_INSTALL_LIBDIR})

@@ -292,7 +292,7 @@ void measure_limit(const ode_bpp::MlcpFile& file, int repeat, Measurement& bpp) 
     bpp.physical_limit_us = ode_bpp::bench::physical_limit_us(file, bpp.result.states, repeat);
 }
 
-/// The relative natural residual (as Result::relative_natural_residual) over the rows without
+/// The relative natural residual (as Residuals::relative_natural) over the rows without
 /// friction only (findex < 0), where every method solves the same fixed-bound conditions and the
 /// Frozen/Consistent friction semantics play no part. x: n entries, original order.
 double nonfriction_residual(const ode_bpp::Problem& problem, const std::vector<double>& x) {
@@ -318,11 +318,11 @@ double run_variant(const ode_bpp::Problem& problem, const Variant& variant, Meas
 /// A peer's answer judged like ode_bpp's: the residuals of ode_bpp/residuals.h at its x.
 void judge_peer_answer(const ode_bpp::Problem& problem, Measurement& m) {
     const ode_bpp::Residuals r = ode_bpp::compute_residuals(problem, ode_bpp::ConstStrided{m.x.data(), 1});
-    m.result.natural_residual = r.natural;
-    m.result.relative_natural_residual = r.relative_natural;
-    m.result.scaled_natural_residual = r.scaled_natural;
-    m.result.friction_error = r.friction;
-    m.result.pivots = 0;
+    m.result.residuals.natural = r.natural;
+    m.result.residuals.relative_natural = r.relative_natural;
+    m.result.residuals.scaled_natural = r.scaled_natural;
+    m.result.residuals.friction = r.friction;
+    m.result.pivoting.pivots = 0;
     m.result.tight = 0;
 }
 
@@ -379,9 +379,9 @@ void write_row(std::ostream& csv, const ode_bpp::MlcpFile& file, const std::stri
         << meta_or(file, "island", "") << ',' << std::filesystem::path(path).filename().string() << ','
         << file.n << ',' << file.nub << ',' << cond << ',' << variant.name << ',' << variant.pgs_iterations << ','
         << (variant.is_peer() ? ode_bpp::bench::to_string(m.peer_status) : ode_bpp::to_string(r.status)) << ','
-        << median(m.times_us) << ',' << r.pivots << ',' << r.murty_pivots
-        << ',' << r.tight << ',' << r.natural_residual << ',' << r.relative_natural_residual << ','
-        << r.scaled_natural_residual << ',' << r.friction_error << ',' << m.factor_error << ','
+        << median(m.times_us) << ',' << r.pivoting.pivots << ',' << r.pivoting.murty_pivots
+        << ',' << r.tight << ',' << r.residuals.natural << ',' << r.residuals.relative_natural << ','
+        << r.residuals.scaled_natural << ',' << r.residuals.friction << ',' << m.factor_error << ','
         << (r.fallback == ode_bpp::Fallback::None ? "-" : ode_bpp::to_string(r.fallback)) << ',' << m.limit_us << ','
         << (m.limit_status.empty() ? "-" : m.limit_status) << ',' << m.nonfriction_residual << ','
         << m.physical_limit_us << ',' << friction_rows(file) << '\n';

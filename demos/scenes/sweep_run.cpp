@@ -98,9 +98,9 @@ void observe_island(const dMLCP* problem, const dMLCPIslandStats* stats, void* u
     r.not_spd += last.status == Status::NotSpd ? 1 : 0;
     r.regularized += last.fallback == Fallback::Regularized || last.fallback == Fallback::RegularizedDantzig ? 1 : 0;
     r.friction_not_consistent += last.status == Status::FrictionNotConsistent ? 1 : 0;
-    r.murty_pivots += last.murty_pivots;
-    r.rescues += last.rescues;
-    r.friction_rounds += last.friction_rounds;
+    r.murty_pivots += last.pivoting.murty_pivots;
+    r.rescues += last.pivoting.rescues;
+    r.friction_rounds += last.pivoting.friction_rounds;
     const bool flagged = last.status == Status::FrictionNotConsistent;
     r.friction_unflagged += last.friction == FrictionMode::Consistent && !flagged && excess > kFrictionExcess ? 1 : 0;
 }

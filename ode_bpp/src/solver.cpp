@@ -21,7 +21,7 @@
 // certification_level(tolerance): the smaller of the scaled (componentwise) and the relative one,
 // as each misreads what the other reads well (certified_by). Converged stays only where the
 // residual of the method's own friction semantics does not refute it (Frozen friction and ODE's
-// Dantzig: the fixed-bound residuals, Result::fixed_bound_residual), and a certified answer is
+// Dantzig: the fixed-bound residuals, Residuals::fixed_bound), and a certified answer is
 // Converged whatever the method's own iteration said (a budget that ran out on an answer already
 // exact, PGS's sweeps). Friction rows with mu = +inf are unbounded rows for every method
 // (unbounded_friction.h).
@@ -109,7 +109,7 @@ Result run_dantzig(const Problem& p, const linalg::SymmetricRows& A, std::vector
 Result run_pgs(const Problem& p, const linalg::SymmetricRows& A, const Options& o, std::vector<double>& x) {
     Result r;
     baselines::solve_pgs(p, A, std::max(0, o.pgs_iterations), x);
-    r.pivots = std::max(0, o.pgs_iterations);  // sweeps: PGS has no pivot steps
+    r.pivoting.pivots = std::max(0, o.pgs_iterations);  // sweeps: PGS has no pivot steps
     r.states = states_of(p, x);
     r.tight = count_tight(r.states);
     r.status = Status::MaxIterations;
@@ -151,16 +151,6 @@ void apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Opt
     r.tight = 0;
 }
 
-void store_residuals(const Residuals& res, Result& r) {
-    r.natural_residual = res.natural;
-    r.relative_natural_residual = res.relative_natural;
-    r.scaled_natural_residual = res.scaled_natural;
-    r.free_residual = res.free;
-    r.friction_error = res.friction;
-    r.fixed_bound_residual = res.fixed_bound;
-    r.scaled_fixed_bound_residual = res.scaled_fixed_bound;
-}
-
 /// The certifying value of a pair of residuals of one answer: the smaller. The scaled residual
 /// divides each row by its own scale, which is rounding itself where an exact x_i is 0 and its
 /// neighbours too (an exact forklift answer: 7e-3 from rows with x ~ 1e-14 and |w| ~ 1e-16); the
@@ -168,14 +158,14 @@ void store_residuals(const Residuals& res, Result& r) {
 /// clamped by 3e3 N s: 1.7e-8 where every row was exact to 1e-10 of its scale).
 double certified_by(double scaled, double relative) { return std::min(scaled, relative); }
 
-double natural_certificate(const Result& r) { return certified_by(r.scaled_natural_residual, r.relative_natural_residual); }
+double natural_certificate(const Result& r) { return certified_by(r.residuals.scaled_natural, r.residuals.relative_natural); }
 
 /// The residual that can refute a Converged answer: friction bounds from the answer's own normals
 /// where the method keeps friction consistent (PGS projects onto them at every sweep), the
 /// fixed-bound residuals where it freezes them (ODE's Dantzig; BPP's Frozen mode).
 double refuting_residual(const Options& o, const Result& r) {
     const bool consistent = o.method == Method::Pgs || (is_bpp(o.method) && o.friction == FrictionMode::Consistent);
-    return consistent ? natural_certificate(r) : certified_by(r.scaled_fixed_bound_residual, r.fixed_bound_residual);
+    return consistent ? natural_certificate(r) : certified_by(r.residuals.scaled_fixed_bound, r.residuals.fixed_bound);
 }
 
 std::string residual_text(double residual, double level) {
@@ -204,7 +194,7 @@ void agree_with_residual(const Options& o, Result& r) {
 }
 
 void fill_residuals(const Problem& p, const linalg::SymmetricRows& A, Result& r, const std::vector<double>& x) {
-    store_residuals(compute_residuals(p, A, ConstStrided{x.data(), 1}, r.states.empty() ? nullptr : &r.states), r);
+    r.residuals = compute_residuals(p, A, ConstStrided{x.data(), 1}, r.states.empty() ? nullptr : &r.states);
 }
 
 // noinline: inlined, GCC re-derives a thread_local's address (__tls_get_addr in a shared
@@ -230,7 +220,7 @@ bool solve_small(const Problem& problem, const Options& options, const Start& st
     if (!pivoting::solve_small_island(problem, options, start, answer, r)) return false;
     r.method = options.method;
     r.friction = options.friction;
-    store_residuals(compute_residuals(problem, ConstStrided{answer.data(), 1}, &r.states), r);
+    r.residuals = compute_residuals(problem, ConstStrided{answer.data(), 1}, &r.states);
     agree_with_residual(options, r);
     for (int i = 0; i < problem.n; ++i) x[i] = answer[i];
     return true;
@@ -345,7 +335,7 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
     Result r = dispatch(problem, *A, options, start, answer);
     r.method = options.method;
     r.friction = options.friction;
-    r.pivots += small_attempt.pivots;  // the steps of a small-island attempt that did not finish
+    r.pivoting.pivots += small_attempt.pivoting.pivots;  // the steps of a small-island attempt that did not finish
     apply_fallbacks(problem, *A, options, r, answer);
     fill_residuals(problem, *A, r, answer);
     agree_with_residual(options, r);

@@ -25,7 +25,7 @@ TEST(CoreWithoutOde, EveryBppMethodAndPgsSolveAChainWithContacts) {
         std::vector<double> x(static_cast<std::size_t>(chain.n));
         const Result r = solve(chain, o, x.data());
         EXPECT_EQ(r.status, Status::Converged) << to_string(m) << ": " << r.message;
-        EXPECT_LT(r.relative_natural_residual, 1e-8) << to_string(m);
+        EXPECT_LT(r.residuals.relative_natural, 1e-8) << to_string(m);
     }
     Options pgs;
     pgs.method = Method::Pgs;

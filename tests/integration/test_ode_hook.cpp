@@ -164,7 +164,11 @@ TEST(OdeHook, BppAndDantzigAgreeOnTheTrajectory) {
     const dReal* pd = dBodyGetPosition(d.box);
     const dReal* pb = dBodyGetPosition(b.box);
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(pd[k], pb[k], 1e-6);
-    EXPECT_GT(ode_bpp::hook_counters().islands, 0);
+    dMLCPStepStats total{};
+    total.struct_size = sizeof total;
+    ASSERT_TRUE(dWorldGetMLCPStats(b.world, nullptr, &total));
+    EXPECT_GT(total.islands, 0);
+    EXPECT_STREQ(total.solver, "bpp");
 }
 
 struct ObserverLog {

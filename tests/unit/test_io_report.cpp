@@ -64,8 +64,8 @@ TEST(IoReport, SolveRecordDescribesTheProblem) {
     EXPECT_EQ(column("friction_rows"), "8");  // 4 contacts x 2 friction rows
     EXPECT_EQ(column("method"), "bpp");
     // printed with 9 significant digits
-    EXPECT_NEAR(std::stod(column("natural_residual")), record.result.natural_residual,
-                1e-8 * record.result.natural_residual);
+    EXPECT_NEAR(std::stod(column("natural_residual")), record.result.residuals.natural,
+                1e-8 * record.result.residuals.natural);
 }
 
 TEST(IoReport, EqualityProblemIsSolved) {
@@ -79,7 +79,7 @@ TEST(IoReport, EqualityProblemIsSolved) {
         options.method = method;
         const auto record = ode_bpp::io::solve_and_time(read.file, "chain", options, 1);
         EXPECT_TRUE(ode_bpp::is_usable(record.result.status)) << to_string(method);
-        EXPECT_LE(record.result.natural_residual, 1e-9 * std::max(1.0, b_norm)) << to_string(method);
+        EXPECT_LE(record.result.residuals.natural, 1e-9 * std::max(1.0, b_norm)) << to_string(method);
     }
 }
 

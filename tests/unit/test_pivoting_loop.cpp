@@ -69,13 +69,13 @@ TEST_P(PivotingEnumeration, WarmStartFromTheAnswerNeedsOnePivot) {
     std::vector<double> x;
     const Result first = run(p, GetParam(), x);
     ASSERT_EQ(first.status, Status::Converged);
-    ASSERT_GT(first.pivots, 1);
+    ASSERT_GT(first.pivoting.pivots, 1);
     Start start;
     start.states = first.states;
     std::vector<double> x2;
     const Result second = run(p, GetParam(), x2, {}, start);
     EXPECT_EQ(second.status, Status::Converged);
-    EXPECT_EQ(second.pivots, 1);
+    EXPECT_EQ(second.pivoting.pivots, 1);
     EXPECT_LT(max_abs_diff(x, x2), 1e-12 * (1 + inf_norm(x)));
 }
 
@@ -94,10 +94,10 @@ TEST(PivotingMurty, PureBlockPivotingCyclesOnTheNamedProblem) {
     std::vector<double> x;
     const Result r = run(p, Method::BppChol, x, o);
     EXPECT_EQ(r.status, Status::MaxIterations);
-    EXPECT_EQ(r.murty_pivots, 0);
+    EXPECT_EQ(r.pivoting.murty_pivots, 0);
     // 200 block steps among at most 27 index sets: a deterministic rule that never stops revisits
     // a set, i.e. cycles
-    ASSERT_EQ(r.tight_per_step.size(), 200u);
+    ASSERT_EQ(r.pivoting.tight_per_step.size(), 200u);
 }
 
 TEST(PivotingMurty, SafeguardEngagesAndConvergesToTheEnumeratedAnswer) {
@@ -112,7 +112,7 @@ TEST(PivotingMurty, SafeguardEngagesAndConvergesToTheEnumeratedAnswer) {
             std::vector<double> x;
             const Result r = run(p, m, x, o);
             ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " murty_after " << murty_after;
-            EXPECT_GT(r.murty_pivots, 0) << to_string(m) << " murty_after " << murty_after;
+            EXPECT_GT(r.pivoting.murty_pivots, 0) << to_string(m) << " murty_after " << murty_after;
             EXPECT_LT(max_abs_diff(x, *expected), 1e-9);
         }
 }
@@ -126,7 +126,7 @@ TEST(PivotingBudget, ExhaustedBudgetReturnsTheLeastInfeasibleIterateWithinBounds
     ASSERT_EQ(r.status, Status::MaxIterations);
     EXPECT_FALSE(r.message.empty());
     EXPECT_TRUE(is_usable(r.status));
-    EXPECT_EQ(r.pivots, 1);
+    EXPECT_EQ(r.pivoting.pivots, 1);
     for (int i = 0; i < p.n; ++i) {
         ASSERT_TRUE(std::isfinite(x[i]));
         EXPECT_GE(x[i], p.lo[i]);

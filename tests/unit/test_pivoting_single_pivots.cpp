@@ -36,9 +36,9 @@ TEST(PivotingSinglePivots, FinishTheCapturedIslandsThatRanOutOfBudget) {
         const Result r = solve_captured(name, true);
         EXPECT_EQ(r.status, Status::Converged) << name << ": " << r.message;
         EXPECT_EQ(r.fallback, Fallback::None) << name;
-        EXPECT_EQ(r.rescues, 0) << name;
-        EXPECT_GT(r.murty_pivots, 0) << name;
-        EXPECT_LE(r.scaled_fixed_bound_residual, certification_level(Options{}.tolerance)) << name;
+        EXPECT_EQ(r.pivoting.rescues, 0) << name;
+        EXPECT_GT(r.pivoting.murty_pivots, 0) << name;
+        EXPECT_LE(r.residuals.scaled_fixed_bound, certification_level(Options{}.tolerance)) << name;
     }
 }
 
@@ -64,8 +64,8 @@ TEST(PivotingSinglePivots, AgreeWithDantzigWhenTheyDoMostOfTheWork) {
                 o.tuning.dense_island_rows = 0;  // the skyline path, not the small-island one
                 const Result r = solve(p, o, x.data());
                 ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " seed " << seed << ": " << r.message;
-                used += r.update_steps > 0;
-                EXPECT_EQ(r.downdate_steps + r.refactor_steps + r.update_steps, r.pivots);
+                used += r.pivoting.update_steps > 0;
+                EXPECT_EQ(r.pivoting.downdate_steps + r.pivoting.refactor_steps + r.pivoting.update_steps, r.pivoting.pivots);
                 const double tol = 1e3 * cond * std::numeric_limits<double>::epsilon() * (1 + problems::inf_norm(reference));
                 EXPECT_LT(problems::max_abs_diff(x, reference), tol) << to_string(m) << " cond " << cond << " seed " << seed;
             }

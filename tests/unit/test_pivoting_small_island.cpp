@@ -63,13 +63,13 @@ TEST(SmallIsland, AgreesWithTheGeneralDriver) {
             // Frozen bounds are not those of the answer's own normals: the residual (which takes
             // them from the answer) is the general driver's, and the certificate without friction
             if (contacts == 0) {
-                EXPECT_LT(a.scaled_natural_residual, 1e-8) << n << " " << seed;
+                EXPECT_LT(a.residuals.scaled_natural, 1e-8) << n << " " << seed;
             }
-            EXPECT_NEAR(a.scaled_natural_residual, b.scaled_natural_residual, 1e-8) << n << " " << seed;
-            EXPECT_EQ(a.refactor_steps, a.pivots);  // a dense refactorization per step
-            EXPECT_EQ(a.downdate_steps, 0);
+            EXPECT_NEAR(a.residuals.scaled_natural, b.residuals.scaled_natural, 1e-8) << n << " " << seed;
+            EXPECT_EQ(a.pivoting.refactor_steps, a.pivoting.pivots);  // a dense refactorization per step
+            EXPECT_EQ(a.pivoting.downdate_steps, 0);
             EXPECT_TRUE(a.ordering.empty());        // the caller's order: nothing for the hook to keep
-            EXPECT_EQ(static_cast<int>(a.tight_per_step.size()), a.pivots);
+            EXPECT_EQ(static_cast<int>(a.pivoting.tight_per_step.size()), a.pivoting.pivots);
             ++compared;
         }
     EXPECT_EQ(compared, 16);
@@ -115,7 +115,7 @@ TEST(SmallIsland, HandsAnUnfinishedIslandToTheGeneralDriverAndCountsItsSteps) {
     const Result a = run(p, small, o);
     const Result b = run_general(p, general, o);
     EXPECT_EQ(a.status, b.status);
-    EXPECT_EQ(a.pivots, b.pivots + 1);  // its one step, then the general driver's
+    EXPECT_EQ(a.pivoting.pivots, b.pivoting.pivots + 1);  // its one step, then the general driver's
 }
 
 TEST(SmallIsland, ReportsInvalidMatricesAsValidateDoes) {

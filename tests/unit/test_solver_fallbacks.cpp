@@ -45,7 +45,7 @@ TEST(SolverFallback, DuplicatedRowsAreRegularizedAndStillSolved) {
         EXPECT_GT(r.regularization, 0);
         EXPECT_FALSE(r.message.empty());
         // A + delta I is solved exactly; against A itself the residual is ~ delta |x|
-        EXPECT_LT(r.natural_residual, 1e3 * r.regularization * (1 + std::abs(x[0]) + std::abs(x[1])));
+        EXPECT_LT(r.residuals.natural, 1e3 * r.regularization * (1 + std::abs(x[0]) + std::abs(x[1])));
         // the two duplicated normals share the load (any split solves the singular problem)
         EXPECT_NEAR(x[0] + x[1] + 0.2 * x[2], 1.0, 1e-6);
     }

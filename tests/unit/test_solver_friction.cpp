@@ -32,7 +32,7 @@ TEST(SolverFriction, DantzigBreaksTheConeOnTheNotesExampleAndFrozenBppMatchesIt)
     const Result rd = run(p, Method::Dantzig, FrictionMode::Frozen, xd);
     ASSERT_EQ(rd.status, Status::Converged);
     // ODE's Dantzig takes the bound from the normal before the friction row moved it
-    EXPECT_GT(rd.friction_error, 1e-3);
+    EXPECT_GT(rd.residuals.friction, 1e-3);
     EXPECT_GT(std::abs(xd[1]), 0.5 * xd[0]);
     const auto frozen = problems::enumerate_frozen_friction(p);
     ASSERT_TRUE(frozen.has_value());
@@ -51,9 +51,9 @@ TEST(SolverFriction, ConsistentModeIsAFixedPointOfItsOwnBounds) {
         std::vector<double> x;
         const Result r = run(p, m, FrictionMode::Consistent, x);
         ASSERT_EQ(r.status, Status::Converged) << r.message;
-        EXPECT_TRUE(r.linked_friction);
-        EXPECT_LT(r.friction_error, 1e-8);
-        EXPECT_LT(r.scaled_natural_residual, 1e-8);
+        EXPECT_TRUE(r.pivoting.linked_solves > 0);
+        EXPECT_LT(r.residuals.friction, 1e-8);
+        EXPECT_LT(r.residuals.scaled_natural, 1e-8);
         // the fixed-bound problem with bounds +-mu x0 taken from the answer has the answer as solution
         const double bound = 0.5 * x[0];
         const auto again = problems::enumerate_boxed_lcp(p, {0, -bound, -INFINITY}, {INFINITY, bound, INFINITY});
@@ -89,8 +89,8 @@ TEST(SolverFriction, ConsistentModeKeepsEveryFrictionRowInsideItsCone) {
             ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " seed " << seed << ": " << r.message;
             double scale = 1;
             for (double v : x) scale = std::max(scale, std::abs(v));
-            EXPECT_LT(r.friction_error, 1e-8 * scale) << to_string(m) << " seed " << seed;
-            EXPECT_LT(r.scaled_natural_residual, 1e-8) << to_string(m) << " seed " << seed;
+            EXPECT_LT(r.residuals.friction, 1e-8 * scale) << to_string(m) << " seed " << seed;
+            EXPECT_LT(r.residuals.scaled_natural, 1e-8) << to_string(m) << " seed " << seed;
         }
     }
 }
@@ -104,7 +104,7 @@ TEST(SolverFriction, ConsistentModeReportsWhenItsRoundsRunOut) {
     const Result r = run(p, Method::Bpp, FrictionMode::Consistent, x, o);
     EXPECT_EQ(r.status, Status::FrictionNotConsistent);
     EXPECT_TRUE(is_usable(r.status));
-    EXPECT_EQ(r.friction_rounds, 1);
+    EXPECT_EQ(r.pivoting.friction_rounds, 1);
     EXPECT_FALSE(r.message.empty());
     for (double v : x) EXPECT_TRUE(std::isfinite(v));
 }
@@ -123,13 +123,13 @@ TEST(SolverFriction, CapstanNeedsTheLinkedSolve) {
     EXPECT_EQ(damped.status, Status::FrictionNotConsistent);
     const Result r = run(p, Method::Bpp, FrictionMode::Consistent, x);
     ASSERT_EQ(r.status, Status::Converged) << r.message;
-    EXPECT_TRUE(r.linked_friction);
-    EXPECT_EQ(r.lemke_pivots, 0);
+    EXPECT_TRUE(r.pivoting.linked_solves > 0);
+    EXPECT_EQ(r.pivoting.lemke_pivots, 0);
     // the certificate: natural residual with bounds from the answer's own normals
     const Residuals res = compute_residuals(p, ConstStrided{x.data(), 1});
     EXPECT_LE(res.scaled_natural, 1e-8);
     EXPECT_LE(res.friction, 1e-9 * (1 + *std::max_element(x.begin(), x.end())));
-    EXPECT_LT(res.friction, damped.friction_error);
+    EXPECT_LT(res.friction, damped.residuals.friction);
 }
 
 /// Where the linked solve runs out of budget (on the winch at compliance 1e-10, 2 % of the frames
@@ -147,7 +147,7 @@ TEST(SolverFriction, LemkeStageFinishesWhereTheLinkedSolveRunsOut) {
         o.tuning.lemke_friction = true;
         const Result r = run(p, m, FrictionMode::Consistent, x, o);
         ASSERT_EQ(r.status, Status::Converged) << to_string(m) << ": " << r.message;
-        EXPECT_GT(r.lemke_pivots, 0) << to_string(m);
+        EXPECT_GT(r.pivoting.lemke_pivots, 0) << to_string(m);
         const Residuals res = compute_residuals(p, ConstStrided{x.data(), 1});
         EXPECT_LE(res.scaled_natural, 1e-8) << to_string(m);
         EXPECT_LE(res.friction, 1e-9 * (1 + *std::max_element(x.begin(), x.end()))) << to_string(m);

@@ -61,8 +61,8 @@ TEST(SolverAgreement, BppVariantsAgreeWithEachOtherAndWithDantzig) {
                     ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " cond " << cond << " seed " << seed;
                     EXPECT_LT(max_abs_diff(x, reference), tol)
                         << to_string(m) << " cond " << cond << " seed " << seed << " friction " << friction;
-                    EXPECT_EQ(r.downdate_steps + r.refactor_steps + r.update_steps, r.pivots) << to_string(m);
-                    EXPECT_EQ(static_cast<int>(r.tight_per_step.size()), r.pivots);
+                    EXPECT_EQ(r.pivoting.downdate_steps + r.pivoting.refactor_steps + r.pivoting.update_steps, r.pivoting.pivots) << to_string(m);
+                    EXPECT_EQ(static_cast<int>(r.pivoting.tight_per_step.size()), r.pivoting.pivots);
                 }
             }
 }
@@ -112,9 +112,9 @@ TEST(SolverSmallIslands, DenseAndSkylinePathsOfBppAgree) {
         const Result b = run(p, Method::Bpp, skyline, o);
         ASSERT_EQ(a.status, Status::Converged) << n;
         ASSERT_EQ(b.status, Status::Converged) << n;
-        EXPECT_EQ(a.downdate_steps, 0) << n;  // the dense path never deletes rows
+        EXPECT_EQ(a.pivoting.downdate_steps, 0) << n;  // the dense path never deletes rows
         EXPECT_LT(max_abs_diff(dense, skyline), 1e-8 * (1 + inf_norm(dense))) << n;
-        EXPECT_LT(b.scaled_natural_residual, o.tolerance) << n;
+        EXPECT_LT(b.residuals.scaled_natural, o.tolerance) << n;
     }
 }
 
@@ -159,10 +159,10 @@ TEST(SolverCertificate, NaturalResidualCertifiesAnswersFromCond1e2To1e14) {
                 << to_string(r.status) << " cond " << cond << " seed " << seed << ": " << r.message;
             converged += r.status == Status::Converged;
             // an exact solve of a perturbation of size eps * cond in x: scaled residual ~ tol
-            EXPECT_LT(r.scaled_natural_residual, 10 * o.tolerance) << "cond " << cond << " seed " << seed;
-            EXPECT_LT(r.friction_error, 10 * o.tolerance * (1 + inf_norm(x))) << "cond " << cond << " seed " << seed;
+            EXPECT_LT(r.residuals.scaled_natural, 10 * o.tolerance) << "cond " << cond << " seed " << seed;
+            EXPECT_LT(r.residuals.friction, 10 * o.tolerance * (1 + inf_norm(x))) << "cond " << cond << " seed " << seed;
             const Residuals check = compute_residuals(p, ConstStrided{x.data(), 1}, &r.states);
-            EXPECT_EQ(check.scaled_natural, r.scaled_natural_residual);
+            EXPECT_EQ(check.scaled_natural, r.residuals.scaled_natural);
         }
     EXPECT_EQ(total, 21);
     EXPECT_GE(converged, 15);
@@ -207,8 +207,8 @@ TEST(SolverInterface, RecordStepsCanBeTurnedOff) {
     o.record_steps = false;
     std::vector<double> x;
     const Result r = run(p, Method::Bpp, x, o);
-    EXPECT_GT(r.pivots, 0);
-    EXPECT_TRUE(r.tight_per_step.empty());
+    EXPECT_GT(r.pivoting.pivots, 0);
+    EXPECT_TRUE(r.pivoting.tight_per_step.empty());
 }
 
 TEST(SolverWarmStart, WarmStartOfAPerturbedProblemConvergesFasterToTheSameAnswer) {
@@ -224,7 +224,7 @@ TEST(SolverWarmStart, WarmStartOfAPerturbedProblemConvergesFasterToTheSameAnswer
         start.states = cold.states;
         const Result warm = run(p, m, x_warm, {}, start);
         ASSERT_EQ(warm.status, Status::Converged);
-        EXPECT_LE(warm.pivots, again.pivots) << to_string(m);
+        EXPECT_LE(warm.pivoting.pivots, again.pivoting.pivots) << to_string(m);
         EXPECT_LT(max_abs_diff(x_warm, x_cold), 1e-9 * inf_norm(x_cold)) << to_string(m);
     }
 }
@@ -238,7 +238,7 @@ TEST(SolverContinuation, StagesReachTheSameAnswer) {
     const Result staged = run(p, Method::Bpp, x1, o);
     ASSERT_TRUE(plain.status == Status::Converged || plain.status == Status::FallbackUsed) << plain.message;
     ASSERT_EQ(staged.status, plain.status) << staged.message;
-    EXPECT_GT(staged.pivots, plain.pivots - 1);  // the stages cost pivots of their own
+    EXPECT_GT(staged.pivoting.pivots, plain.pivoting.pivots - 1);  // the stages cost pivots of their own
     EXPECT_LT(max_abs_diff(x0, x1), 1e-8 * inf_norm(x0));
 }
 
@@ -252,7 +252,7 @@ TEST(SolverPgs, ConvergesOnAWellConditionedProblemAndReportsMaxIterationsOtherwi
     std::vector<double> x;
     const Result r = run(p, Method::Pgs, x, o);
     EXPECT_EQ(r.status, Status::Converged);
-    EXPECT_LE(r.scaled_natural_residual, o.tolerance);
+    EXPECT_LE(r.residuals.scaled_natural, o.tolerance);
     EXPECT_LT(max_abs_diff(x, *expected), 1e-7);
     o.pgs_iterations = 1;
     const Result short_run = run(p, Method::Pgs, x, o);

@@ -31,8 +31,8 @@ void expect_status_agrees(const Result& r, const Options& o, const std::string& 
     SCOPED_TRACE(where + ": " + to_string(o.method) + "/" + to_string(o.friction) + " " + to_string(r.status) +
                  " (" + r.message + ")");
     const double level = certification_level(o.tolerance);
-    const double natural = std::min(r.scaled_natural_residual, r.relative_natural_residual);
-    const double fixed = std::min(r.scaled_fixed_bound_residual, r.fixed_bound_residual);
+    const double natural = std::min(r.residuals.scaled_natural, r.residuals.relative_natural);
+    const double fixed = std::min(r.residuals.scaled_fixed_bound, r.residuals.fixed_bound);
     // Converged: certified (natural), or unrefuted by the fixed-bound residual of a frozen method
     if (r.status == Status::Converged) {
         EXPECT_LE(keeps_friction_consistent(o) ? natural : std::min(natural, fixed), level);
@@ -89,7 +89,7 @@ TEST(SolverStatus, DantzigsEarlyExitIsNotConverged) {
     const Result r = solve(read.file.view(), o, x.data());
     EXPECT_EQ(r.status, Status::MaxIterations);
     EXPECT_NE(r.message.find("residual"), std::string::npos) << r.message;
-    EXPECT_GT(r.fixed_bound_residual, 0.5);
+    EXPECT_GT(r.residuals.fixed_bound, 0.5);
     expect_status_agrees(r, o, "forklift island");
     // bpp on the same island: converged and certified
     const Options b = options_for(Method::Bpp, FrictionMode::Frozen, 100);
@@ -131,7 +131,7 @@ TEST(SolverStatus, InfiniteFrictionIsUnboundedForEveryMethod) {
             const Result r = solve(p, o, x.data());
             SCOPED_TRACE(std::string(to_string(m)) + "/" + to_string(f));
             EXPECT_EQ(r.status, Status::Converged) << r.message;
-            EXPECT_LE(std::min(r.scaled_natural_residual, r.relative_natural_residual), 1e-10);
+            EXPECT_LE(std::min(r.residuals.scaled_natural, r.residuals.relative_natural), 1e-10);
             std::vector<double> w, scale;
             residual_vectors(p, ConstStrided{x.data(), 1}, w, scale);
             for (int i = 0; i < p.n; ++i) {

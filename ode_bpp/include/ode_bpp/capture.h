@@ -3,6 +3,8 @@
 // ODE.
 #pragma once
 
+#include "ode_bpp/export.h"
+
 #include <optional>
 #include <string>
 
@@ -18,10 +20,10 @@ namespace ode_bpp {
 /// over nb bodies. Must be called before the solve (Dantzig destroys A). Sets metadata step_size
 /// and, if the world is known, cfm and erp, unless meta already has them. Fails, with a message,
 /// when the joints do not tile the rows or the structure is otherwise invalid.
-std::optional<MlcpFile> capture_from_ode(const dMLCP& problem, const Metadata& meta, std::string* error);
+ODE_BPP_API std::optional<MlcpFile> capture_from_ode(const dMLCP& problem, const Metadata& meta, std::string* error);
 
 /// capture_from_ode followed by write_mlcp.
-bool write_mlcp_from_ode(const std::string& path, const dMLCP& problem, const Metadata& meta,
+ODE_BPP_API bool write_mlcp_from_ode(const std::string& path, const dMLCP& problem, const Metadata& meta,
                          std::string* error);
 
 }  // namespace ode_bpp

@@ -10,6 +10,8 @@
 // the number of bytes actually present before anything is allocated.
 #pragma once
 
+#include "ode_bpp/export.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -28,7 +30,7 @@ inline constexpr std::uint32_t kMlcpFormatVersion = 1;
 /// Ordered key=value text attached to a problem. Keys are non-empty and use only
 /// [A-Za-z0-9_.-]; values contain neither '\n' nor '\0'; keys are unique.
 /// Conventional keys: scene, frame, island, cfm, erp, step_size, solver.
-struct Metadata {
+struct ODE_BPP_API Metadata {
     std::vector<std::pair<std::string, std::string>> entries;
 
     /// Sets key to value, replacing an existing entry in place or appending a new one.
@@ -41,7 +43,7 @@ struct Metadata {
 };
 
 /// One MLCP that owns its data.
-struct MlcpFile {
+struct ODE_BPP_API MlcpFile {
     int n = 0;
     int nub = 0;
     /// n x n row-major with lda = n, symmetric: the file's lower triangle mirrored.
@@ -68,25 +70,25 @@ struct ReadResult {
 };
 
 /// Reads and validates a whole file (structure only: NaN or lo > hi are left to solve()).
-ReadResult read_mlcp(const std::string& path);
+ODE_BPP_API ReadResult read_mlcp(const std::string& path);
 /// Same on an in-memory image of size bytes; name is used in error messages only.
-ReadResult read_mlcp_bytes(const std::uint8_t* data, std::size_t size, const std::string& name);
+ODE_BPP_API ReadResult read_mlcp_bytes(const std::uint8_t* data, std::size_t size, const std::string& name);
 
 /// Copies a Problem (strided vectors, any lda) into an owning MlcpFile; x_ref is n contiguous
 /// doubles or null. num_bodies becomes 1 + the largest body index. Fails, with a message
 /// naming the field, when the structure is invalid (same checks as the reader).
-std::optional<MlcpFile> copy_problem(const Problem& problem, const Metadata& meta,
+ODE_BPP_API std::optional<MlcpFile> copy_problem(const Problem& problem, const Metadata& meta,
                                      const double* x_ref, std::string* error);
 
 /// Serializes a file image (version kMlcpFormatVersion). Fails on an invalid structure.
-bool encode_mlcp(const MlcpFile& file, std::vector<std::uint8_t>* bytes, std::string* error);
+ODE_BPP_API bool encode_mlcp(const MlcpFile& file, std::vector<std::uint8_t>* bytes, std::string* error);
 
 /// Writes the file through a temporary and a rename, so readers never see half a file.
-bool write_mlcp(const std::string& path, const MlcpFile& file, std::string* error);
+ODE_BPP_API bool write_mlcp(const std::string& path, const MlcpFile& file, std::string* error);
 /// copy_problem followed by write_mlcp.
-bool write_mlcp(const std::string& path, const Problem& problem, const Metadata& meta,
+ODE_BPP_API bool write_mlcp(const std::string& path, const Problem& problem, const Metadata& meta,
                 const double* x_ref, std::string* error);
 /// CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of size bytes: the file's checksum.
-std::uint32_t crc32(const std::uint8_t* data, std::size_t size);
+ODE_BPP_API std::uint32_t crc32(const std::uint8_t* data, std::size_t size);
 
 }  // namespace ode_bpp

@@ -9,6 +9,8 @@
 // and an unchanged program switches with the environment: ODE_LCP_SOLVER=bpp.
 #pragma once
 
+#include "ode_bpp/export.h"
+
 #include <ode/ode.h>
 
 #ifdef __cplusplus
@@ -17,18 +19,18 @@ extern "C" {
 
 /// Registers ode-bpp's solvers with ODE (idempotent; already done when the library loads).
 /// Returns the number of solvers registered.
-int ode_bpp_register_solvers(void);
+ODE_BPP_API int ode_bpp_register_solvers(void);
 
 /// Registers ode-bpp's solver `method` (a name of ode_bpp::method_names(), e.g. "bpp") a second
 /// time, as `as_name`, in ODE's dense form: the world step then forms its m x m A and the solver
 /// reads it, as before the sparse form existed. For comparing the two forms (they give the same
 /// answers bit for bit, ode/assemble.h); never faster. Returns 1 on success, 0 for an unknown
 /// method or a name ODE refuses.
-int ode_bpp_register_dense_form(const char* method, const char* as_name);
+ODE_BPP_API int ode_bpp_register_dense_form(const char* method, const char* as_name);
 
 /// Selects the named solver for this world (registering first). Returns 1 on success, 0 for an
 /// unknown name (the world's choice is then unchanged).
-int ode_bpp_use(dWorldID world, const char* solver_name);
+ODE_BPP_API int ode_bpp_use(dWorldID world, const char* solver_name);
 
 #ifdef __cplusplus
 }
@@ -48,32 +50,22 @@ struct WorldSettings {
 };
 
 /// Replaces the settings of a world (thread-safe). Worlds without settings use the defaults.
-void set_world_settings(dWorldID world, const WorldSettings& settings);
-WorldSettings world_settings(dWorldID world);
+ODE_BPP_API void set_world_settings(dWorldID world, const WorldSettings& settings);
+ODE_BPP_API WorldSettings world_settings(dWorldID world);
 
 /// The full Result of the last island that the hook solved in this world (for demos and tests:
 /// residuals, pivots, tight count, fallback). Empty Result if none.
-Result last_island_result(dWorldID world);
+ODE_BPP_API Result last_island_result(dWorldID world);
 
 /// The island's A as a dense m x m row-major array holding the lower triangle (diagonal included;
 /// the upper triangle zero), whichever form ODE handed over: read from the dense A, or assembled
 /// from J, J M^-1 and the CFM in the sparse form. O(m^2): for capture and diagnostics, never
 /// on the solve path. Valid in the observer's "before" call.
-void island_matrix_lower(const dMLCP& island, std::vector<double>& A);
+ODE_BPP_API void island_matrix_lower(const dMLCP& island, std::vector<double>& A);
 
 /// Forgets the warm-start state and settings of a world (call before dWorldDestroy if the
 /// process creates many worlds; stale state is harmless otherwise).
-void forget_world(dWorldID world);
-
-/// Counts of the hook since the process started, over all worlds.
-struct HookCounters {
-    long islands = 0;               ///< islands solved by an ode-bpp solver
-    long warm_started = 0;          ///< of which started from a previous index set
-    long converged = 0;             ///< Status::Converged
-    long fallbacks = 0;             ///< answered by a fallback (Status::FallbackUsed)
-    long failures = 0;              ///< returned dMLCPFailed: ODE's Dantzig answered
-};
-HookCounters hook_counters();
+ODE_BPP_API void forget_world(dWorldID world);
 
 }  // namespace ode_bpp
 #endif

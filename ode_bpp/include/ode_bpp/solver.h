@@ -9,6 +9,8 @@
 // All index spaces in this header are the caller's original row order.
 #pragma once
 
+#include "ode_bpp/export.h"
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -71,18 +73,18 @@ enum class Method {
     Dantzig,   ///< "dantzig": ODE's stock Dantzig through dSolveMLCPDantzig (needs the ODE library)
     Pgs,       ///< "pgs": projected Gauss-Seidel, Options::pgs_iterations sweeps
 };
-const char* to_string(Method m);
-std::optional<Method> method_from_string(std::string_view name);
+ODE_BPP_API const char* to_string(Method m);
+ODE_BPP_API std::optional<Method> method_from_string(std::string_view name);
 /// All method names, in the order of the enum.
-std::vector<std::string> method_names();
+ODE_BPP_API std::vector<std::string> method_names();
 
 /// How friction bounds follow the normal impulses.
 enum class FrictionMode {
     Frozen,      ///< Dantzig's semantics: bounds fixed from the normals of a first solve
     Consistent,  ///< at convergence |x_i| <= mu_i * x_findex[i] for every friction row
 };
-const char* to_string(FrictionMode f);
-std::optional<FrictionMode> friction_from_string(std::string_view name);
+ODE_BPP_API const char* to_string(FrictionMode f);
+ODE_BPP_API std::optional<FrictionMode> friction_from_string(std::string_view name);
 
 enum class Status {
     /// an answer within certification_level() of exact in the residual of its friction semantics
@@ -99,9 +101,9 @@ enum class Status {
     InvalidInput,    ///< validation failed (NaN/Inf, lo > hi, bad findex, bad sizes); x is zero
     FrictionNotConsistent,  ///< consistent mode: the outer bound loop ran out of iterations
 };
-const char* to_string(Status s);
+ODE_BPP_API const char* to_string(Status s);
 /// True when x is a usable answer (Converged, FallbackUsed, or an inexact but finite iterate).
-bool is_usable(Status s);
+ODE_BPP_API bool is_usable(Status s);
 
 /// The fallback an answer came through (solver.cpp's chain), if any.
 enum class Fallback : std::int8_t {
@@ -111,7 +113,7 @@ enum class Fallback : std::int8_t {
     RegularizedDantzig,  ///< regularization did not rescue the method either; ODE's Dantzig answered
 };
 /// "none", "regularized", "dantzig", "regularized+dantzig".
-const char* to_string(Fallback f);
+ODE_BPP_API const char* to_string(Fallback f);
 
 /// Per-row state of an index set: the paper's F, T_lo and T_hi.
 enum class RowState : std::int8_t { Free = 0, AtLo = 1, AtHi = 2 };
@@ -172,7 +174,7 @@ struct Options {
     bool dantzig_fallback = true;
     /// Compute Table 4's ||L_deleted - chol(A_FF)||_F at the final index set (costly).
     bool compute_factor_error = false;
-    /// Record |T| at every pivot step in Result::tight_per_step.
+    /// Record |T| at every pivot step in Result::pivoting.tight_per_step.
     bool record_steps = true;
     Tuning tuning;
 };
@@ -188,67 +190,88 @@ struct Start {
     std::vector<int> ordering;
 };
 
+/// The quality measures of an answer (ode_bpp/residuals.h computes them), the same for every
+/// method so that ours, Dantzig, PGS and the peers are judged by the same numbers.
+struct Residuals {
+    /// ||x - clamp(x - w, lo(x), hi(x))||_inf with w = A x - b and the friction bounds taken
+    /// from x's own normal impulses.
+    double natural = 0;
+    /// natural / max(1, ||b||_inf).
+    double relative_natural = 0;
+    /// Scale-free version: max_i |x_i - clamp(x_i - w_i / A_ii, lo_i(x), hi_i(x))| / s_i with the
+    /// row's own scale s_i = ((|A||x|)_i + |b_i|) / A_ii (0 where the numerator is 0), for a
+    /// friction row at least |mu_i| s_findex[i], as its bound is known only to its normal's scale.
+    /// The diagonal scaling keeps the same solution set and makes both terms units of x; this is
+    /// the quantity the per-row tolerance Options::tolerance bounds.
+    double scaled_natural = 0;
+    /// ||A_FF x_F - (b_F - A_FT x_T)||_inf = max over free rows of |w_i|.
+    double free = 0;
+    /// max over friction rows of max(0, |x_i| - mu_i |x_findex[i]|).
+    double friction = 0;
+    /// relative_natural of the fixed-bound problem the answer implies: each friction row with a
+    /// finite mu bounded by +-|x_i|, its own magnitude, instead of +-mu_i |x_findex[i]|. Frozen
+    /// friction and ODE's Dantzig fix friction bounds that the answer does not carry; whatever
+    /// they were, an exact answer of that fixed-bound problem has this residual at rounding level
+    /// (a friction row strictly inside its bounds has w_i = 0, one at a bound has w_i of the sign
+    /// that keeps it there), so a larger value refutes it. It cannot certify one: a row stopped
+    /// short of its bound passes.
+    double fixed_bound = 0;
+    /// scaled_natural of the same fixed-bound problem.
+    double scaled_fixed_bound = 0;
+};
+
+/// What the pivoting did to reach an answer, all fixed-bound solves and friction rounds together.
+struct PivotStats {
+    int pivots = 0;              ///< pivot steps (solves of A_FF x_F = rhs)
+    int murty_pivots = 0;        ///< of which single (Murty) pivots
+    int downdate_steps = 0;      ///< steps whose L_FF came from copying L and deleting rows
+    int refactor_steps = 0;      ///< steps whose L_FF came from a (partial) refactorization
+    /// steps whose L_FF came from the single pivots' incremental factor (one row added or removed;
+    /// Tuning::single_pivots); pivots = downdate_steps + refactor_steps + update_steps
+    int update_steps = 0;
+    int accuracy_refactors = 0;  ///< deleted factors rejected by the free-residual check and refactored
+    int rescues = 0;             ///< fixed-bound solves the rescue continuation finished (Tuning::rescue_after)
+    /// Consistent friction: solves with the friction bounds moving with the normals
+    /// (Tuning::link_friction); 0 when the linked stage did not run.
+    int linked_solves = 0;
+    /// Consistent friction: outer bound updates after the linked solve (0 when it alone converged).
+    int friction_rounds = 0;
+    /// Consistent friction: complementary pivots of the Lemke stage, which runs only where the
+    /// linked solves did not finish (pivoting/friction_lcp.h); 0 when it was not needed.
+    int lemke_pivots = 0;
+    std::vector<int> tight_per_step;  ///< |T| at each pivot step (Options::record_steps)
+};
+
+/// What a solve returns besides x: DART's {status, iterations, residual, message} shape, with
+/// the pivoting's counts and every residual.
 struct Result {
     Status status = Status::InvalidInput;
     std::string message;          ///< human-readable reason, always set when not Converged
     Method method = Method::Bpp;
     FrictionMode friction = FrictionMode::Frozen;
-    int pivots = 0;               ///< pivot steps (solves of A_FF x_F = rhs), all rounds together
-    int murty_pivots = 0;         ///< of which single (Murty) pivots
-    int downdate_steps = 0;       ///< steps whose L_FF came from copying L and deleting rows
-    int refactor_steps = 0;       ///< steps whose L_FF came from a (partial) refactorization
-    /// steps whose L_FF came from the single pivots' incremental factor (one row added or removed;
-    /// Tuning::single_pivots); pivots = downdate_steps + refactor_steps + update_steps
-    int update_steps = 0;
-    int friction_rounds = 0;      ///< outer bound updates (consistent mode)
-    /// Consistent mode: the linked solve (Tuning::link_friction) ran; friction_rounds counts
-    /// the outer rounds after it (0 when it alone converged).
-    bool linked_friction = false;
-    /// Consistent mode: complementary pivots of the Lemke stage, which runs only where the linked
-    /// solves did not finish (pivoting/friction_lcp.h); 0 when it was not needed.
-    int lemke_pivots = 0;
-    std::vector<int> tight_per_step;  ///< |T| at each pivot step
-    int tight = 0;                ///< |T| at the answer
     Fallback fallback = Fallback::None;
-    /// Natural residual ||x - clamp(x - w, lo(x), hi(x))||_inf with friction bounds taken from
-    /// the returned normal impulses, and the same divided by max(1, ||b||_inf).
-    double natural_residual = 0;
-    double relative_natural_residual = 0;
-    /// relative_natural_residual with each friction row bounded by +-|x_i| (the fixed-bound
-    /// problem the answer implies; ode_bpp/residuals.h, Residuals::fixed_bound): at rounding level
-    /// for any exact answer of Frozen friction or of ODE's Dantzig, whatever bounds they froze.
-    double fixed_bound_residual = 0;
-    /// scaled_natural_residual of the same fixed-bound problem (Residuals::scaled_fixed_bound).
-    double scaled_fixed_bound_residual = 0;
-    /// ||A_FF x_F - (b_F - A_FT x_T)||_inf at the answer's index set.
-    double free_residual = 0;
-    /// max over friction rows of max(0, |x_i| - mu_i |x_findex[i]|).
-    double friction_error = 0;
-    /// Table 4's factor error (NaN unless requested and meaningful for the method).
+    PivotStats pivoting;
+    /// The answer's residuals, friction bounds taken from its own normal impulses.
+    Residuals residuals;
+    int tight = 0;                ///< |T| at the answer
+    /// Table 4's ||L_deleted - chol(A_FF)||_F at the final index set (NaN unless requested with
+    /// Options::compute_factor_error and meaningful for the method).
     double factor_error = -1;
-    std::vector<RowState> states; ///< final index set, original row order (for warm starts)
-    std::vector<int> ordering;    ///< BPP methods: the permutation factored in (perm[new] = old)
-    /// Scale-free natural residual: max_i |x_i - clamp(x_i - w_i/A_ii, lo_i(x), hi_i(x))| / s_i with
-    /// s_i = ((|A||x|)_i + |b_i|) / A_ii (friction rows: at least |mu_i| s_normal), the quantity
-    /// Options::tolerance bounds (ode_bpp/residuals.h).
-    double scaled_natural_residual = 0;
-    /// Deleted factors rejected by the loss-of-accuracy check and replaced by a refactorization.
-    int accuracy_refactors = 0;
     /// delta of the A + delta*I the answer solves (0 unless the fallback was Regularized).
     double regularization = 0;
-    /// Fixed-bound solves that the rescue continuation finished (Tuning::rescue_after).
-    int rescues = 0;
+    std::vector<RowState> states; ///< final index set, original row order (for warm starts)
+    std::vector<int> ordering;    ///< BPP methods: the permutation factored in (perm[new] = old)
 };
 
 /// The residual at or below which an answer is certified (Status::Converged), for every method:
 /// 10 x the classification tolerance, at least 1e-14 (1e-8 by default).
-double certification_level(double tolerance);
+ODE_BPP_API double certification_level(double tolerance);
 
 /// Solves the problem with the chosen method from `start` and writes x (n entries).
 /// Never throws on bad input and never writes non-finite values into x.
-Result solve(const Problem& problem, const Options& options, Strided x, const Start& start = {});
+ODE_BPP_API Result solve(const Problem& problem, const Options& options, Strided x, const Start& start = {});
 
 /// Convenience overload for contiguous x.
-Result solve(const Problem& problem, const Options& options, double* x, const Start& start = {});
+ODE_BPP_API Result solve(const Problem& problem, const Options& options, double* x, const Start& start = {});
 
 }  // namespace ode_bpp

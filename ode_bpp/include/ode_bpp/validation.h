@@ -3,6 +3,8 @@
 // Index space: the caller's original row order (messages name original rows).
 #pragma once
 
+#include "ode_bpp/export.h"
+
 #include <string>
 #include <vector>
 
@@ -28,19 +30,19 @@ struct ValidationResult {
 ///  - block structure (if num_blocks > 0): block_row strictly increasing from 0 to n, bodies >= -1
 ///    (the findex and block rules are the file format's too: structure_rules.h).
 /// Reads only; O(n^2) for a dense A's lower triangle, O(non-zeros) for a sparse A.
-ValidationResult validate(const Problem& problem);
+ODE_BPP_API ValidationResult validate(const Problem& problem);
 
 /// validate() without A's entries (sizes, bounds, findex, blocks). O(n).
-ValidationResult validate_structure(const Problem& problem);
+ODE_BPP_API ValidationResult validate_structure(const Problem& problem);
 
 /// A's entries (lower triangle and diagonal): finite, diagonal > 0; the same first defect and
 /// message as validate() on the dense form. O(non-zeros).
-ValidationResult validate_matrix(const linalg::SymmetricRows& A);
+ODE_BPP_API ValidationResult validate_matrix(const linalg::SymmetricRows& A);
 /// The same for a problem that passed validate_structure, whichever form its A comes in: O(n^2)
 /// for the dense form's lower triangle, O(non-zeros) for the sparse form.
-ValidationResult validate_matrix(const Problem& problem);
+ODE_BPP_API ValidationResult validate_matrix(const Problem& problem);
 
 /// Checks that a warm start fits the problem: empty (no warm start) or exactly n entries.
-ValidationResult validate_warm_start(const Problem& problem, const std::vector<RowState>& warm_start);
+ODE_BPP_API ValidationResult validate_warm_start(const Problem& problem, const std::vector<RowState>& warm_start);
 
 }  // namespace ode_bpp

@@ -54,15 +54,15 @@ std::vector<std::string> report_fields(const SolveRecord& rec) {
             to_string(r.status),
             r.message,
             microseconds(rec.time_us),
-            std::to_string(r.pivots),
-            std::to_string(r.murty_pivots),
-            std::to_string(r.downdate_steps),
-            std::to_string(r.refactor_steps),
+            std::to_string(r.pivoting.pivots),
+            std::to_string(r.pivoting.murty_pivots),
+            std::to_string(r.pivoting.downdate_steps),
+            std::to_string(r.pivoting.refactor_steps),
             std::to_string(r.tight),
-            number(r.natural_residual),
-            number(r.relative_natural_residual),
-            number(r.free_residual),
-            number(r.friction_error),
+            number(r.residuals.natural),
+            number(r.residuals.relative_natural),
+            number(r.residuals.free),
+            number(r.residuals.friction),
             number(r.factor_error)};
 }
 

@@ -13,24 +13,27 @@
 
 #include <cstddef>
 
+#include "ode_bpp/export.h"
+
 namespace ode_bpp::summary {
 
 // The handlers of SIGINT and SIGTERM are installed when libode_bpp loads, over the default
 // disposition only (a program's own handler, or an inherited SIG_IGN, stays). ode-bpp-run's
 // preload (tools/run) moves SIGINT's to the program's first world step instead, and
-// counts the quick steps that QuickStep solved; the functions below are its interface.
+// counts the quick steps that QuickStep solved; the functions below are its interface, exported
+// from libode_bpp.so for it (ODE_BPP_API) though not part of the public headers.
 
 /// Counts one dWorldQuickStep that ODE's QuickStep iterations solved (not routed to an MLCP
 /// solver): the summary reports them as quickstep_steps. Lock-free.
-void count_unrouted_quickstep();
+ODE_BPP_API void count_unrouted_quickstep();
 
 /// Takes back the SIGINT handler installed at load (if still ours) and installs it at the first
 /// note_world_step() instead: CPython turns SIGINT into KeyboardInterrupt only where it finds the
 /// default disposition when it starts (docs/launcher.md), after any preloaded library has loaded.
-void arm_sigint_at_first_step();
+ODE_BPP_API void arm_sigint_at_first_step();
 
 /// Called at every world step the program makes; lock-free after the first call.
-void note_world_step();
+ODE_BPP_API void note_world_step();
 
 /// What the summary knows at this moment; every field lock-free to read.
 struct Totals {
@@ -41,11 +44,11 @@ struct Totals {
     long long quickstep_steps = 0;      ///< dWorldQuickStep steps solved by QuickStep's iterations
     const char* solver = nullptr;       ///< the solver of the latest island; nullptr if none
 };
-Totals current_totals();
+ODE_BPP_API Totals current_totals();
 
 /// Writes the summary line of `t` into `out` (at most `size` bytes, NUL-terminated) and returns
 /// its length. signal_number > 0 adds "(ended by SIGINT)" or the like. Async-signal-safe: no
 /// allocation, no locale, no stdio.
-std::size_t format_line(const Totals& t, int signal_number, char* out, std::size_t size);
+ODE_BPP_API std::size_t format_line(const Totals& t, int signal_number, char* out, std::size_t size);
 
 }  // namespace ode_bpp::summary

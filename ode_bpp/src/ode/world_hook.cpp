@@ -42,7 +42,6 @@ struct WorldState {
 struct HookState {
     std::mutex lock;
     std::unordered_map<dWorldID, WorldState> worlds;
-    HookCounters counters;
 };
 
 HookState& hook() {
@@ -128,7 +127,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     Result r = solve(q, options, Strided{problem->pairsbx + 1, 2}, start);
 
     const dMLCPStatus status = to_ode_status(r);
-    stats->pivots = r.pivots;
+    stats->pivots = r.pivoting.pivots;
     stats->tight = r.tight;
     stats->fallbacks = r.fallback == Fallback::None ? 0 : 1;
     stats->fallback = fallback_name(r);
@@ -139,11 +138,6 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     if (use_memory && status != dMLCPFailed) ws.memory.remember(keys, problem->step, r.states);
     if (known_rows && !r.ordering.empty() && r.ordering != start.ordering)
         ws.orderings.store(structure, r.ordering);
-    h.counters.islands += 1;
-    h.counters.warm_started += warm ? 1 : 0;
-    h.counters.converged += r.status == Status::Converged ? 1 : 0;
-    h.counters.fallbacks += r.status == Status::FallbackUsed ? 1 : 0;
-    h.counters.failures += status == dMLCPFailed ? 1 : 0;
     ws.last = std::move(r);  // last use of r: no copy of its vectors per island
     return status;
 }
@@ -183,10 +177,6 @@ void forget_world(dWorldID world) {
     hook().worlds.erase(world);
 }
 
-HookCounters hook_counters() {
-    std::lock_guard<std::mutex> g(hook().lock);
-    return hook().counters;
-}
 
 }  // namespace ode_bpp
 

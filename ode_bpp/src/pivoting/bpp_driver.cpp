@@ -106,15 +106,7 @@ Result finish(PolicyOutcome outcome, const FixedBoundSolver& fixed, const PivotC
               std::vector<double>& x_out) {
     const int n = static_cast<int>(x.size());
     Result r;
-    r.pivots = counters.pivots;
-    r.murty_pivots = counters.murty_pivots;
-    r.downdate_steps = counters.downdate_steps;
-    r.refactor_steps = counters.refactor_steps;
-    r.update_steps = counters.update_steps;
-    r.accuracy_refactors = counters.accuracy_refactors;
-    r.rescues = counters.rescues;
-    r.linked_friction = counters.linked_solves > 0;
-    r.tight_per_step = counters.tight_per_step;
+    r.pivoting = counters;
     r.factor_error = std::numeric_limits<double>::quiet_NaN();
     r.regularization = fixed.shift();
     x_out.assign(static_cast<std::size_t>(n), 0.0);
@@ -170,8 +162,8 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     }
     xp.resize(static_cast<std::size_t>(problem.n), 0.0);
     Result r = finish(outcome, fixed, counters, q, states, xp, x);
-    r.friction_rounds = rounds;
-    r.lemke_pivots = lemke_pivots;
+    r.pivoting.friction_rounds = rounds;
+    r.pivoting.lemke_pivots = lemke_pivots;
     r.status = status_of(outcome, fixed.shift());
     r.message = message_of(outcome, fixed.shift(), options, rounds, note);
     if (options.compute_factor_error && outcome != PolicyOutcome::NotSpd) r.factor_error = q.solver->factor_error(tight_set(states));

@@ -30,17 +30,10 @@ struct PivotSettings {
 };
 
 /// Counters accumulated over every run of the loop that a solve makes.
-struct PivotCounters {
-    int pivots = 0;
-    int murty_pivots = 0;
-    int downdate_steps = 0;
-    int refactor_steps = 0;
-    int update_steps = 0;        ///< single pivots on the incremental factor (single_pivots.h)
-    int accuracy_refactors = 0;  ///< deleted factors rejected by the free-residual check
-    int rescues = 0;             ///< fixed-bound solves finished by the driver's rescue continuation
-    int linked_solves = 0;       ///< solves with moving friction bounds (BoxedLcp::friction_normal)
-    std::vector<int> tight_per_step;
-};
+/// The loop's counts are the public PivotStats (ode_bpp/solver.h), summed over every fixed-bound
+/// solve of one answer.
+using PivotCounters = PivotStats;
+
 
 enum class LoopOutcome {
     Converged,      ///< no row infeasible: x solves the boxed LCP to the scaled tolerance

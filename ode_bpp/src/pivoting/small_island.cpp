@@ -158,9 +158,9 @@ private:
                 ++tight;
             }
         }
-        ++r_.pivots;
-        ++r_.refactor_steps;
-        if (o_.record_steps) r_.tight_per_step.push_back(tight);
+        ++r_.pivoting.pivots;
+        ++r_.pivoting.refactor_steps;
+        if (o_.record_steps) r_.pivoting.tight_per_step.push_back(tight);
         if (nf > 0 && !solve_free(x, nf)) return false;
         refresh_w(x);
         return true;
@@ -201,7 +201,7 @@ private:
 
     /// Murty's rule in the driver's orientation: only the infeasible row of largest index moves.
     void flip_largest(const Infeasibility& inf, std::vector<RowState>& states) {
-        ++r_.murty_pivots;
+        ++r_.pivoting.murty_pivots;
         states[inf.rows.back()] = inf.flip_to.back();
     }
 

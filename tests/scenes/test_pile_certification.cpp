@@ -100,18 +100,22 @@ const PileScene kScenes[] = {
     {"rockpile", 45, 45, 90, 900},
 };
 
-/// The pile islands (the step's island of at least min_rows / 2 rows) that do not certify yet
-/// although cond(A) is within double precision (1e9): Lemke's path runs out of its budget, or
-/// passes a nearly singular basis first (docs/benchmarks.md).
+/// The islands that do not certify yet although cond(A) is within double precision
+/// (docs/benchmarks.md): two pile islands of the bin (rows 0: the step's island of at least
+/// min_rows / 2 rows), where Lemke's path runs out of its budget or passes a nearly singular basis
+/// first; and a 69-row rock pile island that ends Converged by the per-row scaled residual
+/// (4.5e-10) at a relative one of 2.4e-8, far above its rounding floor (~1e-12): the per-row
+/// tolerance lets the pivoting stop there, since its relative measure divides by ||b|| only.
 struct OpenIsland {
     std::string scene;
     long step;
+    int rows;
 };
-const OpenIsland kOpen[] = {{"bin", 150}, {"bin", 270}};
+const OpenIsland kOpen[] = {{"bin", 150, 0}, {"bin", 270, 0}, {"rockpile", 45, 69}};
 
-bool is_open(const std::string& scene, long step) {
+bool is_open(const std::string& scene, long step, int rows, int min_rows) {
     for (const OpenIsland& o : kOpen)
-        if (o.scene == scene && o.step == step) return true;
+        if (o.scene == scene && o.step == step && (o.rows == 0 ? 2 * rows >= min_rows : rows == o.rows)) return true;
     return false;
 }
 
@@ -132,7 +136,7 @@ TEST_P(PileCertification, EveryCapturedIslandCertifiesWithConsistentBpp) {
         std::vector<double> x(static_cast<std::size_t>(f.n));
         const Result r = solve(f.view(), options, x.data());
         const double relative = compute_residuals(f.view(), ConstStrided{x.data(), 1}).relative_natural;
-        const bool listed = is_open(s.scene, c.steps[k]) && 2 * f.n >= s.min_rows;
+        const bool listed = is_open(s.scene, c.steps[k], f.n, s.min_rows);
         if (r.status == Status::Converged && relative <= kCertified) {
             ++certified;
             EXPECT_FALSE(listed) << s.scene << " step " << c.steps[k] << " certifies now: take it off the open list";

@@ -127,7 +127,7 @@ std::vector<char> tight_set(const std::vector<RowState>& states) {
 
 struct BppWorkspace::Buffers {
     PermutedProblem problem;
-    LoopWorkspace loop;
+    FixedBoundBuffers fixed_bound;
     StrategyBuffers strategies;
 };
 
@@ -152,7 +152,7 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     std::vector<RowState> states = permuted_start(problem, start, q.perm);
     std::vector<double> xp;
     PivotCounters counters;
-    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.buffers().loop);
+    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.buffers().fixed_bound);
     PolicyOutcome outcome;
     int rounds = 0, lemke_pivots = 0;
     std::string note;

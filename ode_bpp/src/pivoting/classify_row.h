@@ -43,11 +43,13 @@ inline RowVerdict classify_row(RowState s, double x, double w, double lo, double
 struct Infeasibility {
     std::vector<int> rows;            ///< ascending index
     std::vector<RowState> flip_to;    ///< the state Eq. 4 moves each of them to
+    std::vector<double> excess;       ///< how far each breaks its condition (RowVerdict::excess)
     double violation = 0;
     int count() const { return static_cast<int>(rows.size()); }
     void clear() {
         rows.clear();
         flip_to.clear();
+        excess.clear();
         violation = 0;
     }
 };
@@ -63,6 +65,7 @@ void classify_rows(int n, const std::vector<RowState>& states, const std::vector
         if (v.to == states[i]) continue;
         inf.rows.push_back(i);
         inf.flip_to.push_back(v.to);
+        inf.excess.push_back(v.excess);
         inf.violation += v.excess;
     }
 }

@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <limits>
 
+#include "pivoting/single_pivots.h"
 #include "pivoting/tuning.h"
 
 namespace ode_bpp::pivoting {
 
 FixedBoundSolver::FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,
-                                   PivotCounters& counters, LoopWorkspace& loop)
-    : lcp_(lcp), solver_(solver), options_(options), counters_(counters), loop_(loop), regularization_(max_diag) {}
+                                   PivotCounters& counters, FixedBoundBuffers& buffers)
+    : lcp_(lcp), solver_(solver), options_(options), counters_(counters), buffers_(buffers), regularization_(max_diag) {}
 
 FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<double>& x, int budget) {
     start_ = states;
@@ -25,21 +26,39 @@ FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<
     }
 }
 
-/// The plain loop gets Tuning::rescue_after steps; if it has not converged by then, the rescue
-/// starts afresh from the warm start with the rest of the budget, and should it give up, the
-/// plain loop resumes from its least infeasible index set. Converged, MaxIterations or Breakdown.
+/// The plain loop gets Tuning::rescue_after steps; if it has not converged by then, single
+/// pivots on an incremental factor (single_pivots.h) go on from its least infeasible index
+/// set, with a budget of their own; where they do not finish, the rescue starts afresh
+/// from the warm start with the rest of the budget, and should it give up, the plain loop
+/// resumes from its least infeasible index set. Converged, MaxIterations or Breakdown.
 LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vector<double>& x, int budget) {
-    const int first = counters_.pivots;
+    int first = counters_.pivots;
     const auto left = [&] { return budget - (counters_.pivots - first); };
     const bool rescue_allowed = options_.tuning.rescue_after > 0;
     LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, options_.tuning.rescue_after) : budget),
-                                             states, x, counters_, loop_);
+                                             states, x, counters_, buffers_.loop);
     if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
+    if (options_.tuning.single_pivots && single_pivots_apply(lcp_)) {
+        const int before = counters_.pivots;
+        outcome = by_single_pivots(states, x);
+        if (outcome == LoopOutcome::Converged) return outcome;
+        first += counters_.pivots - before;  // the single pivots had a budget of their own
+    }
     outcome = rescue(states, x, left());
     if (outcome != LoopOutcome::Stalled) return outcome;
     if (!prepare(shift())) return LoopOutcome::Breakdown;
     if (left() <= 0) return LoopOutcome::MaxIterations;
-    return pivot_fixed_bounds(lcp_, solver_, settings(left()), states, x, counters_, loop_);
+    return pivot_fixed_bounds(lcp_, solver_, settings(left()), states, x, counters_, buffers_.loop);
+}
+
+/// Single pivots from states (single_pivots.h), then the plain loop from their answer,
+/// which certifies it with the factor strategy's own solve and polishes it (usually one step).
+/// Converged, MaxIterations or Breakdown; states as they came in unless Converged.
+LoopOutcome FixedBoundSolver::by_single_pivots(std::vector<RowState>& states, std::vector<double>& x) {
+    const int max_pivots = tuning::kSinglePivotsPerRow * lcp_.n() + tuning::kSinglePivotsExtra;
+    const LoopOutcome outcome = single_pivots(lcp_, settings(max_pivots), states, x, counters_, buffers_.single_pivots);
+    if (outcome != LoopOutcome::Converged) return outcome;
+    return pivot_fixed_bounds(lcp_, solver_, settings(std::max(1, options_.tuning.rescue_after)), states, x, counters_, buffers_.loop);
 }
 
 /// The rescue continuation (regularization.h): stages on A + delta I, the first from the warm
@@ -62,7 +81,7 @@ LoopOutcome FixedBoundSolver::rescue(std::vector<RowState>& states, std::vector<
         stage.max_pivots = budget - (counters_.pivots - first);
         trial = accepted;
         const int before = counters_.pivots;
-        const LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, stage, trial, x, counters_, loop_);
+        const LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, stage, trial, x, counters_, buffers_.loop);
         if (outcome == LoopOutcome::Breakdown) return outcome;
         if (outcome == LoopOutcome::Converged) {
             accepted.swap(trial);
@@ -90,7 +109,7 @@ void FixedBoundSolver::run_continuation(std::vector<RowState>& states, std::vect
         const double delta = regularization_.continuation(k, stages);
         if (delta <= shift() || !prepare(delta)) break;
         std::vector<RowState> trial = states;
-        if (pivot_fixed_bounds(lcp_, solver_, settings(budget), trial, x, counters_, loop_) == LoopOutcome::Breakdown) break;
+        if (pivot_fixed_bounds(lcp_, solver_, settings(budget), trial, x, counters_, buffers_.loop) == LoopOutcome::Breakdown) break;
         states.swap(trial);
     }
 }

@@ -1,8 +1,9 @@
 // One fixed-bound solve of a BPP method: the boxed LCP with its bounds as they stand (paper
 // Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
-// decides: the plain attempt from the warm start, the rescue continuation where that does not
-// converge within Tuning::rescue_after steps, the plain loop again where the rescue gives up,
-// and all of it again one rung up the breakdown ladder after a Cholesky breakdown.
+// decides: the plain attempt from the warm start; where that does not converge within
+// Tuning::rescue_after steps, single pivots on an incremental factor (single_pivots.h),
+// then the rescue continuation, then the plain loop again where the rescue gives up; and all of
+// it again one rung up the breakdown ladder after a Cholesky breakdown.
 //
 // Index space: the permuted space of the BoxedLcp and its FreeSolver.
 #pragma once
@@ -15,6 +16,7 @@
 #include "pivoting/free_solver.h"
 #include "pivoting/pivot_loop.h"
 #include "pivoting/regularization.h"
+#include "pivoting/single_pivots.h"
 
 namespace ode_bpp::pivoting {
 
@@ -25,13 +27,20 @@ enum class FixedOutcome {
     NotSpd,       ///< a Cholesky breakdown even on the last rung of the ladder
 };
 
+/// The buffers of a fixed-bound solve's stages, kept by the caller (BppWorkspace) so that their
+/// capacity outlives one solve.
+struct FixedBoundBuffers {
+    LoopWorkspace loop;
+    SinglePivotsWorkspace single_pivots;
+};
+
 class FixedBoundSolver {
 public:
     /// lcp: the problem (its shift is set here); solver: a factor strategy on lcp.A; options:
     /// murty_after, tolerance, record_steps, rescue_after, continuation_stages; max_diag:
-    /// max_i A_ii; counters: accumulated over every solve; loop: the pivoting loop's buffers.
+    /// max_i A_ii; counters: accumulated over every solve; buffers: the stages' buffers.
     FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,
-                     PivotCounters& counters, LoopWorkspace& loop);
+                     PivotCounters& counters, FixedBoundBuffers& buffers);
 
     /// Solves from `states` (in: the warm start; out: the final index set) within `budget` pivot
     /// steps of the target problem. x: out, n entries.
@@ -42,6 +51,7 @@ public:
 
 private:
     LoopOutcome at_target(std::vector<RowState>& states, std::vector<double>& x, int budget);
+    LoopOutcome by_single_pivots(std::vector<RowState>& states, std::vector<double>& x);
     LoopOutcome rescue(std::vector<RowState>& states, std::vector<double>& x, int budget);
     void run_continuation(std::vector<RowState>& states, std::vector<double>& x, int budget);
     /// Factors A + shift I unless the solver already holds that factor; false on breakdown.
@@ -52,7 +62,7 @@ private:
     FreeSolver& solver_;
     const Options& options_;
     PivotCounters& counters_;
-    LoopWorkspace& loop_;
+    FixedBoundBuffers& buffers_;
     Regularization regularization_;
     std::optional<double> prepared_;       ///< the shift the solver holds a factor of
     bool continuation_done_ = false;       ///< the up-front continuation runs before the first solve only

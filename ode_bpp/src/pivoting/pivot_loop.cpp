@@ -2,24 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 
 #include "pivoting/classify_row.h"
 #include "pivoting/friction_link.h"
+#include "pivoting/iterate.h"
+#include "pivoting/murty_rule.h"
+#include "pivoting/visited_sets.h"
 #include "pivoting/tuning.h"
 
 namespace ode_bpp::pivoting {
 
 namespace {
-
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-/// What goes with an x: w = (A + shift I) x - b, the row scales (|A||x| + |b|)_i, and the
-/// bounds in force (moving friction bounds change them).
-struct Iterate {
-    std::vector<double> w, scale, lo, hi;
-};
 
 /// An answer set aside: the least infeasible iterate of a run, or a converged answer while the
 /// polish tries another.
@@ -37,34 +31,6 @@ struct Snapshot {
         xs = x;
         it = iterate;
     }
-};
-
-/// Index sets entered by the block steps of one run. Block steps are deterministic (x_F from
-/// Eq. 6, then Eq. 4), so a revisit is a cycle: on nearly redundant contact rows the rescue
-/// stages met cycles of 2-6 sets, which the stall count alone let run 6-30 steps (winch,
-/// forklift, parkour at ODE's CFM 1e-10).
-class VisitedSets {
-public:
-    void clear() {
-        hashes_.clear();
-        sets_.clear();
-    }
-    /// True if states was entered before; otherwise records it.
-    bool revisits(const std::vector<RowState>& states) {
-        std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over the states
-        for (RowState s : states) h = (h ^ static_cast<std::uint64_t>(static_cast<int>(s) + 1)) * 1099511628211ULL;
-        const std::size_t n = states.size();
-        for (std::size_t k = 0; k < hashes_.size(); ++k)
-            if (hashes_[k] == h && std::equal(states.begin(), states.end(), sets_.begin() + static_cast<std::ptrdiff_t>(k * n)))
-                return true;
-        hashes_.push_back(h);
-        sets_.insert(sets_.end(), states.begin(), states.end());
-        return false;
-    }
-
-private:
-    std::vector<std::uint64_t> hashes_;
-    std::vector<RowState> sets_;  ///< n entries each
 };
 
 /// The loop's vectors (LoopWorkspace), kept by the caller so that their capacity outlives one
@@ -142,6 +108,25 @@ void give_projected(const Snapshot& best, std::vector<RowState>& states, std::ve
     orient_pinned_rows(it, states);
 }
 
+/// Frees the tight rows whose w has the wrong sign beyond limit (relative to the row scale);
+/// true if any. Pinned rows stay.
+bool free_wrong_sign_rows(const Iterate& it, double limit, std::vector<RowState>& states) {
+    bool any = false;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+        if (it.lo[i] == it.hi[i]) continue;
+        if (wrong_sign(states[i], it.w[i]) > limit * it.scale[i]) {
+            states[i] = RowState::Free;
+            any = true;
+        }
+    }
+    return any;
+}
+
+/// Júdice-Pires block step: every infeasible row changes set at once (Eq. 4).
+void block_pivot(const Infeasibility& inf, std::vector<RowState>& states) {
+    for (int k = 0; k < inf.count(); ++k) states[inf.rows[k]] = inf.flip_to[k];
+}
+
 class PivotLoop {
 public:
     PivotLoop(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings, PivotCounters& counters,
@@ -172,7 +157,7 @@ private:
     void polish(std::vector<RowState>& states, std::vector<double>& x, int budget) {
         for (int round = 0; round < tuning::kPolishRounds && budget > 0; ++round) {
             ws_.trial = states;
-            if (!free_wrong_sign_rows(ws_.trial)) return;
+            if (!free_wrong_sign_rows(it(), accuracy_limit(), ws_.trial)) return;
             ws_.kept.take(states, x, it());
             const LoopOutcome outcome = pivot(ws_.trial, x, std::min(tuning::kPolishSteps, budget));
             budget -= steps_taken_;
@@ -182,20 +167,6 @@ private:
             }
             states.swap(ws_.trial);
         }
-    }
-
-    /// Frees the tight rows whose w has the wrong sign beyond accuracy_limit(); true if any.
-    bool free_wrong_sign_rows(std::vector<RowState>& states) const {
-        const double limit = accuracy_limit();
-        bool any = false;
-        for (int i = 0; i < n_; ++i) {
-            if (pinned(i)) continue;
-            if (wrong_sign(states[i], it().w[i]) > limit * it().scale[i]) {
-                states[i] = RowState::Free;
-                any = true;
-            }
-        }
-        return any;
     }
 
     /// The pivoting loop proper, at most max_steps solves of Eq. 6 from `states`: block steps
@@ -305,33 +276,12 @@ private:
         return outcome;
     }
 
-    /// w = (A + shift I) x - b and the row scales (|A||x| + |b|)_i.
-    void refresh_w(const std::vector<double>& x) {
-        std::vector<double>& w = it().w;
-        std::vector<double>& scale = it().scale;
-        w.resize(static_cast<std::size_t>(n_));
-        scale.resize(static_cast<std::size_t>(n_));
-        lcp_.A->multiply_with_scale(x.data(), lcp_.shift, w.data(), scale.data());
-        for (int i = 0; i < n_; ++i) {
-            w[i] -= lcp_.b[i];
-            scale[i] += std::abs(lcp_.b[i]);
-        }
-    }
+    void refresh_w(const std::vector<double>& x) { refresh_residual(lcp_, x, it()); }
 
-    bool pinned(int i) const { return it().lo[i] == it().hi[i]; }
     double value_at(int i, RowState s) const { return s == RowState::AtLo ? it().lo[i] : it().hi[i]; }
 
-    /// max over free rows of |w_i| / (|A||x| + |b|)_i: Eq. 6's backward error, row by row.
-    double free_residual() const {
-        double worst = 0;
-        for (int i = 0; i < n_; ++i)
-            if (!ws_.tight[i] && it().w[i] != 0) worst = std::max(worst, std::abs(it().w[i]) / it().scale[i]);
-        return worst;
-    }
-
-    /// A fresh Cholesky solve misses Eq. 6 by about n eps relative to |A||x| + |b|; a tenth of
-    /// the classification tolerance keeps the pivoting decisions unaffected by the factor.
-    double accuracy_limit() const { return std::max(0.1 * settings_.tolerance, 100.0 * n_ * kEps); }
+    double free_residual() const { return pivoting::free_residual(it(), ws_.tight); }
+    double accuracy_limit() const { return pivoting::accuracy_limit(settings_.tolerance, n_); }
 
     /// Eq. 4 row by row (classify_row.h).
     const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
@@ -340,19 +290,10 @@ private:
         return ws_.inf;
     }
 
-    /// Júdice-Pires block step: every infeasible row changes set at once (Eq. 4).
-    static void block_pivot(const Infeasibility& inf, std::vector<RowState>& states) {
-        for (int k = 0; k < inf.count(); ++k) states[inf.rows[k]] = inf.flip_to[k];
-    }
-
-    /// Murty's least-index rule, in reverse: only the infeasible row of largest rank in a fixed
-    /// order (BoxedLcp::murty_rank) changes set. This guarantees termination for P-matrices.
+    /// Murty's single pivot (murty_rule.h).
     void murty_pivot(const Infeasibility& inf, std::vector<RowState>& states) {
         ++counters_.murty_pivots;
-        int chosen = inf.count() - 1;
-        if (!lcp_.murty_rank.empty())
-            for (int k = 0; k < inf.count(); ++k)
-                if (lcp_.murty_rank[inf.rows[k]] > lcp_.murty_rank[inf.rows[chosen]]) chosen = k;
+        const int chosen = murty_choice(lcp_, inf);
         states[inf.rows[chosen]] = inf.flip_to[chosen];
     }
 

@@ -1,0 +1,31 @@
+#include "pivoting/iterate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ode_bpp::pivoting {
+
+void refresh_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it) {
+    const int n = lcp.n();
+    it.w.resize(static_cast<std::size_t>(n));
+    it.scale.resize(static_cast<std::size_t>(n));
+    lcp.A->multiply_with_scale(x.data(), lcp.shift, it.w.data(), it.scale.data());
+    for (int i = 0; i < n; ++i) {
+        it.w[i] -= lcp.b[i];
+        it.scale[i] += std::abs(lcp.b[i]);
+    }
+}
+
+double free_residual(const Iterate& it, const std::vector<char>& tight) {
+    double worst = 0;
+    for (std::size_t i = 0; i < tight.size(); ++i)
+        if (!tight[i] && it.w[i] != 0) worst = std::max(worst, std::abs(it.w[i]) / it.scale[i]);
+    return worst;
+}
+
+double accuracy_limit(double tolerance, int n) {
+    return std::max(0.1 * tolerance, 100.0 * n * std::numeric_limits<double>::epsilon());
+}
+
+}  // namespace ode_bpp::pivoting

@@ -10,6 +10,7 @@
 
 #include "ordering/order_rows.h"
 #include "pivoting/boxed_lcp.h"
+#include "pivoting/kept_buffers_impl.h"
 #include "pivoting/fixed_bound_solve.h"
 #include "pivoting/free_solver.h"
 #include "pivoting/friction_policy.h"
@@ -125,22 +126,21 @@ std::vector<char> tight_set(const std::vector<RowState>& states) {
 
 }  // namespace
 
-struct BppWorkspace::Buffers {
+struct BppBuffers {
     PermutedProblem problem;
     FixedBoundBuffers fixed_bound;
     StrategyBuffers strategies;
 };
 
-BppWorkspace::BppWorkspace() : buffers_(std::make_unique<Buffers>()) {}
-BppWorkspace::~BppWorkspace() = default;
+template class KeptBuffers<BppBuffers>;
 
 Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, const Start& start,
                  std::vector<double>& x, BppWorkspace& workspace) {
     const Method strategy = strategy_of(problem, options);
-    PermutedProblem& q = workspace.buffers().problem;
+    PermutedProblem& q = workspace.contents().problem;
     order(problem, A, options, start, strategy, q);
     q.solver.reset();  // the previous solve's strategy works in the buffers the next one takes
-    q.solver = make_free_solver(strategy, *q.A, workspace.buffers().strategies);
+    q.solver = make_free_solver(strategy, *q.A, workspace.contents().strategies);
     if (!q.solver) {
         x.assign(static_cast<std::size_t>(problem.n), 0.0);
         Result r;
@@ -152,7 +152,7 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     std::vector<RowState> states = permuted_start(problem, start, q.perm);
     std::vector<double> xp;
     PivotCounters counters;
-    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.buffers().fixed_bound);
+    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.contents().fixed_bound);
     PolicyOutcome outcome;
     int rounds = 0, lemke_pivots = 0;
     std::string note;

@@ -8,22 +8,16 @@
 
 #include "ode_bpp/solver.h"
 #include "linalg/symmetric_rows.h"
+#include "pivoting/kept_buffers.h"
 
 namespace ode_bpp::pivoting {
 
 /// The buffers of solve_bpp (bpp_driver.cpp: the permuted problem, the factor strategies' and the
 /// pivoting loop's), kept by the caller so that their capacity outlives one solve. One solve per
 /// workspace at a time.
-class BppWorkspace {
-public:
-    BppWorkspace();
-    ~BppWorkspace();
-    struct Buffers;
-    Buffers& buffers() { return *buffers_; }
-
-private:
-    std::unique_ptr<Buffers> buffers_;
-};
+struct BppBuffers;
+using BppWorkspace = KeptBuffers<BppBuffers>;
+extern template class KeptBuffers<BppBuffers>;  // instantiated where BppBuffers is defined
 
 /// Solves a validated problem with options.method in {BppChol, BppDown, BppSky, Bpp}.
 /// A: linalg::SymmetricRows(problem, {}), the problem's matrix in original order.

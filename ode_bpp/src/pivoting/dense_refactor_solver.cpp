@@ -7,6 +7,7 @@
 
 #include "linalg/dense_cholesky.h"
 
+#include "pivoting/kept_buffers_impl.h"
 #include "pivoting/strategies.h"
 
 namespace ode_bpp::pivoting {
@@ -122,15 +123,14 @@ private:
 
 }  // namespace
 
-struct DenseRefactorBuffers::Vectors {
+struct DenseRefactorVectors {
     DenseWorkspace workspace;
 };
 
-DenseRefactorBuffers::DenseRefactorBuffers() : vectors_(std::make_unique<Vectors>()) {}
-DenseRefactorBuffers::~DenseRefactorBuffers() = default;
+template class KeptBuffers<DenseRefactorVectors>;
 
 std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRows& Ap, DenseRefactorBuffers& buffers) {
-    return std::make_unique<DenseRefactorSolver>(Ap, buffers.vectors().workspace);
+    return std::make_unique<DenseRefactorSolver>(Ap, buffers.contents().workspace);
 }
 
 }  // namespace ode_bpp::pivoting

@@ -42,8 +42,9 @@ public:
         return lexicographic_ratio_test(rhs_, c, basis_, [this](int k, Eigen::VectorXd& key) { key = Binv_.col(k); });
     }
 
-    /// Exchanges the basic variable of row r for `entering`, whose column is c.
-    void pivot(int r, int entering, const Eigen::VectorXd& c) {
+    /// Exchanges the basic variable of row r for `entering`, whose column is c (always true: the
+    /// dense inverse meets no singular basis it could detect here).
+    bool pivot(int r, int entering, const Eigen::VectorXd& c) {
         const double p = c[r];
         const Eigen::RowVectorXd pivot_row = Binv_.row(r) / p;
         const double pivot_rhs = rhs_[r] / p;
@@ -55,6 +56,12 @@ public:
         Binv_.row(r) = pivot_row;
         rhs_[r] = pivot_rhs;
         basis_[r] = entering;
+        return true;
+    }
+
+    /// A refresh every max(kMinRefreshPeriod, N) pivots.
+    void after_pivot(int pivots) {
+        if (pivots % std::max(kMinRefreshPeriod, n_) == 0) refresh();
     }
 
     /// B^-1 and B^-1 q afresh from the basis columns (product-form updates drift).
@@ -122,31 +129,8 @@ LemkeSolution solve_lemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, co
     // z0 enters at the row of the least q_i / d_i: then B^-1 q >= 0
     Eigen::Index first = 0;
     q.cwiseQuotient(d).minCoeff(&first);
-    Eigen::VectorXd c;
-    t.column(t.artificial(), c);
-    int entering = t.complement(t.basic(static_cast<int>(first)));
-    t.pivot(static_cast<int>(first), t.artificial(), c);
-    s.pivots = 1;
-    const int refresh_period = std::max(kMinRefreshPeriod, n);
-    while (s.pivots < max_pivots) {
-        t.column(entering, c);
-        const int r = t.ratio_test(c);
-        if (r < 0) {
-            s.outcome = LemkeOutcome::RayTermination;
-            return s;
-        }
-        const int leaving = t.basic(r);
-        t.pivot(r, entering, c);
-        ++s.pivots;
-        if (leaving == t.artificial()) {
-            t.extract(s);
-            s.outcome = LemkeOutcome::Solved;
-            return s;
-        }
-        if (s.pivots % refresh_period == 0) t.refresh();
-        entering = t.complement(leaving);
-    }
-    s.outcome = LemkeOutcome::MaxPivots;
+    s.outcome = follow_lemke_path(t, static_cast<int>(first), max_pivots, s.pivots);
+    if (s.outcome == LemkeOutcome::Solved) t.extract(s);
     return s;
 }
 

@@ -7,6 +7,7 @@
 #include "pivoting/classify_row.h"
 #include "pivoting/friction_link.h"
 #include "pivoting/iterate.h"
+#include "pivoting/kept_buffers_impl.h"
 #include "pivoting/murty_rule.h"
 #include "pivoting/visited_sets.h"
 #include "pivoting/tuning.h"
@@ -323,17 +324,15 @@ private:
 
 }  // namespace
 
-struct LoopWorkspace::Buffers {
+struct LoopBuffers {
     Workspace loop;
 };
-
-LoopWorkspace::LoopWorkspace() : buffers_(std::make_unique<Buffers>()) {}
-LoopWorkspace::~LoopWorkspace() = default;
+template class KeptBuffers<LoopBuffers>;
 
 LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,
                                std::vector<RowState>& states, std::vector<double>& x, PivotCounters& counters,
                                LoopWorkspace& workspace) {
-    return PivotLoop(lcp, solver, settings, counters, workspace.buffers().loop).run(states, x);
+    return PivotLoop(lcp, solver, settings, counters, workspace.contents().loop).run(states, x);
 }
 
 LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,

@@ -8,6 +8,7 @@
 #include "ode_bpp/solver.h"
 #include "pivoting/boxed_lcp.h"
 #include "pivoting/free_solver.h"
+#include "pivoting/kept_buffers.h"
 
 namespace ode_bpp::pivoting {
 
@@ -46,16 +47,9 @@ enum class LoopOutcome {
 
 /// The loop's buffers (pivot_loop.cpp), kept by the caller so that their capacity outlives one
 /// run: a warm run allocates nothing. One run per workspace at a time.
-class LoopWorkspace {
-public:
-    LoopWorkspace();
-    ~LoopWorkspace();
-    struct Buffers;
-    Buffers& buffers() { return *buffers_; }
-
-private:
-    std::unique_ptr<Buffers> buffers_;
-};
+struct LoopBuffers;
+using LoopWorkspace = KeptBuffers<LoopBuffers>;
+extern template class KeptBuffers<LoopBuffers>;  // instantiated where LoopBuffers is defined
 
 /// Runs the loop from the index set `states` (n entries, permuted space; rows that must be free
 /// or are pinned are corrected first) and leaves the final index set there. x: out, n entries,

@@ -5,6 +5,7 @@
 #include "linalg/incremental_cholesky.h"
 #include "pivoting/classify_row.h"
 #include "pivoting/iterate.h"
+#include "pivoting/kept_buffers_impl.h"
 #include "pivoting/murty_rule.h"
 #include "pivoting/tuning.h"
 #include "pivoting/visited_sets.h"
@@ -163,16 +164,14 @@ bool single_pivots_apply(const BoxedLcp& lcp) {
     return !lcp.has_moving_bounds() && lcp.n() <= tuning::kSinglePivotMaxRows;
 }
 
-struct SinglePivotsWorkspace::Buffers {
+struct SinglePivotBuffers {
     Workspace single_pivots;
 };
-
-SinglePivotsWorkspace::SinglePivotsWorkspace() : buffers_(std::make_unique<Buffers>()) {}
-SinglePivotsWorkspace::~SinglePivotsWorkspace() = default;
+template class KeptBuffers<SinglePivotBuffers>;
 
 LoopOutcome single_pivots(const BoxedLcp& lcp, const PivotSettings& settings, std::vector<RowState>& states,
                           std::vector<double>& x, PivotCounters& counters, SinglePivotsWorkspace& workspace) {
-    return SinglePivots(lcp, settings, counters, workspace.buffers().single_pivots).run(states, x, settings.max_pivots);
+    return SinglePivots(lcp, settings, counters, workspace.contents().single_pivots).run(states, x, settings.max_pivots);
 }
 
 }  // namespace ode_bpp::pivoting

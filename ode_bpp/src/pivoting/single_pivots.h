@@ -23,16 +23,9 @@ bool single_pivots_apply(const BoxedLcp& lcp);
 
 /// The buffers of single_pivots (single_pivots.cpp), kept by the caller so that their capacity
 /// outlives one run: a warm run allocates nothing. One run per workspace at a time.
-class SinglePivotsWorkspace {
-public:
-    SinglePivotsWorkspace();
-    ~SinglePivotsWorkspace();
-    struct Buffers;
-    Buffers& buffers() { return *buffers_; }
-
-private:
-    std::unique_ptr<Buffers> buffers_;
-};
+struct SinglePivotBuffers;
+using SinglePivotsWorkspace = KeptBuffers<SinglePivotBuffers>;
+extern template class KeptBuffers<SinglePivotBuffers>;  // instantiated where SinglePivotBuffers is defined
 
 /// Runs single pivots from `states` (a normalized index set, e.g. the pivoting loop's least
 /// infeasible one) on (A + lcp.shift I, b, lo, hi) for at most settings.max_pivots pivots, to

@@ -18,6 +18,7 @@
 #include "linalg/skyline_cholesky.h"
 #include "linalg/skyline_solve.h"
 #include "linalg/step_cost.h"
+#include "pivoting/kept_buffers_impl.h"
 #include "pivoting/strategies.h"
 
 namespace ode_bpp::pivoting {
@@ -29,7 +30,7 @@ using linalg::SkylineShape;
 
 }  // namespace
 
-struct SkylineBuffers::Storage {
+struct SkylineStorage {
     /// What shape and cost were made for: the variant, and the row profile of Ap (its size for
     /// DenseDelete, whose shape depends on n only).
     std::optional<SkylineVariant> variant;
@@ -53,20 +54,19 @@ struct SkylineBuffers::Storage {
     }
 };
 
-SkylineBuffers::SkylineBuffers() : storage_(std::make_unique<Storage>()) {}
-SkylineBuffers::~SkylineBuffers() = default;
+template class KeptBuffers<SkylineStorage>;
 
 namespace {
 
 /// Storage prepared for A: its shape and cost model in place.
-SkylineBuffers::Storage& prepared(SkylineBuffers& buffers, const linalg::SymmetricRows& A, SkylineVariant variant) {
-    buffers.storage().shape_for(A, variant);
-    return buffers.storage();
+SkylineStorage& prepared(SkylineBuffers& buffers, const linalg::SymmetricRows& A, SkylineVariant variant) {
+    buffers.contents().shape_for(A, variant);
+    return buffers.contents();
 }
 
 class SkylineSolver final : public FreeSolver {
 public:
-    SkylineSolver(const linalg::SymmetricRows& A, SkylineVariant variant, SkylineBuffers::Storage& storage)
+    SkylineSolver(const linalg::SymmetricRows& A, SkylineVariant variant, SkylineStorage& storage)
         : A_(A), variant_(variant), shape_(storage.shape), cost_(*storage.cost), A_env_(storage.A_env), L0_(storage.L0),
           L_(storage.L), dirty_rows_(storage.dirty_rows), tight_rows_(storage.tight_rows), work_(storage.work) {}
 

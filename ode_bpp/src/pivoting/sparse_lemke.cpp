@@ -150,6 +150,9 @@ public:
         return basis_.etas() < kRefactorPeriod || refresh();
     }
 
+    /// Nothing: pivot() refactors every kRefactorPeriod etas itself.
+    void after_pivot(int) {}
+
     /// The basic solution with one step of iterative refinement, negatives clamped to 0.
     void extract(LemkeSolution& s) const {
         Eigen::VectorXd xb = rhs_;
@@ -222,36 +225,11 @@ LemkeSolution solve_sparse_lemke(const Eigen::SparseMatrix<double>& M, const Eig
     // z0 enters at the row of the least x_r / s_r: then every basic value is >= 0
     Eigen::Index first = 0;
     t.rhs().cwiseQuotient(spread).minCoeff(&first);
-    Eigen::VectorXd c;
-    t.column(t.artificial(), c);
-    int entering = t.complement(t.basic(static_cast<int>(first)));
-    s.pivots = 1;
-    if (!t.pivot(static_cast<int>(first), t.artificial(), c)) {
-        s.outcome = LemkeOutcome::SingularBasis;
-        return s;
-    }
-    while (s.pivots < max_pivots) {
-        t.column(entering, c);
-        const int r = t.ratio_test(c);
-        if (r < 0) {
-            s.outcome = LemkeOutcome::RayTermination;
-            return s;
-        }
-        const int leaving = t.basic(r);
-        ++s.pivots;
-        if (!t.pivot(r, entering, c)) {
-            s.outcome = LemkeOutcome::SingularBasis;
-            return s;
-        }
-        if (leaving == t.artificial()) {
-            t.refresh();  // the answer from a fresh factor rather than through up to kRefactorPeriod etas
-            t.extract(s);
-            s.outcome = violation(M, q, s.z) <= kAnswerTolerance ? LemkeOutcome::Solved : LemkeOutcome::Inaccurate;
-            return s;
-        }
-        entering = t.complement(leaving);
-    }
-    s.outcome = LemkeOutcome::MaxPivots;
+    s.outcome = follow_lemke_path(t, static_cast<int>(first), max_pivots, s.pivots);
+    if (s.outcome != LemkeOutcome::Solved) return s;
+    t.refresh();  // the answer from a fresh factor rather than through up to kRefactorPeriod etas
+    t.extract(s);
+    if (violation(M, q, s.z) > kAnswerTolerance) s.outcome = LemkeOutcome::Inaccurate;
     return s;
 }
 

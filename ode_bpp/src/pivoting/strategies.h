@@ -4,21 +4,15 @@
 #include <memory>
 
 #include "pivoting/free_solver.h"
+#include "pivoting/kept_buffers.h"
 
 namespace ode_bpp::pivoting {
 
 /// The buffers of the dense refactoring (dense_refactor_solver.cpp), kept by the caller so that
 /// their capacity outlives one solve. One strategy per buffers at a time.
-class DenseRefactorBuffers {
-public:
-    DenseRefactorBuffers();
-    ~DenseRefactorBuffers();
-    struct Vectors;
-    Vectors& vectors() { return *vectors_; }
-
-private:
-    std::unique_ptr<Vectors> vectors_;
-};
+struct DenseRefactorVectors;
+using DenseRefactorBuffers = KeptBuffers<DenseRefactorVectors>;
+extern template class KeptBuffers<DenseRefactorVectors>;  // instantiated where DenseRefactorVectors is defined
 
 /// Alg. 1: gathers A_FF densely and factors it afresh (Eigen LLT) at every step; no L0.
 /// buffers: where it works; they must outlive the strategy.
@@ -28,16 +22,9 @@ std::unique_ptr<FreeSolver> make_dense_refactor_solver(const linalg::SymmetricRo
 /// model, A's envelope, L0 and the working factor), kept by the caller so that their capacity
 /// outlives one solve, and the shape and cost model with them while the matrix's envelope stays
 /// the same (an island of unchanged structure, step after step). One strategy per buffers at a time.
-class SkylineBuffers {
-public:
-    SkylineBuffers();
-    ~SkylineBuffers();
-    struct Storage;
-    Storage& storage() { return *storage_; }
-
-private:
-    std::unique_ptr<Storage> storage_;
-};
+struct SkylineStorage;
+using SkylineBuffers = KeptBuffers<SkylineStorage>;
+extern template class KeptBuffers<SkylineStorage>;  // instantiated where SkylineStorage is defined
 
 /// The buffers of every factor strategy (make_free_solver).
 struct StrategyBuffers {

@@ -154,23 +154,18 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     PivotCounters counters;
     FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.contents().fixed_bound);
     PolicyOutcome outcome;
-    int rounds = 0, lemke_pivots = 0;
     std::string note;
     if (options.friction == FrictionMode::Consistent) {
         ConsistentFriction policy(fixed, q.lcp, q.friction, options, !start.states.empty(), counters);
         outcome = policy.solve(states, xp);
-        rounds = policy.rounds();
-        lemke_pivots = policy.lemke_pivots();
         note = policy.note();
     } else {
         outcome = solve_frozen(fixed, q.lcp, q.friction, std::max(1, options.max_pivots), states, xp);
     }
     xp.resize(static_cast<std::size_t>(problem.n), 0.0);
     Result r = finish(outcome, fixed, counters, q, states, xp, x);
-    r.pivoting.friction_rounds = rounds;
-    r.pivoting.lemke_pivots = lemke_pivots;
     r.status = status_of(outcome, fixed.shift());
-    r.message = message_of(outcome, fixed.shift(), options, rounds, note);
+    r.message = message_of(outcome, fixed.shift(), options, r.pivoting.friction_rounds, note);
     if (options.compute_factor_error && outcome != PolicyOutcome::NotSpd) r.factor_error = q.solver->factor_error(tight_set(states));
     return r;
 }

@@ -32,7 +32,7 @@ PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const Frictio
 }
 
 PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vector<double>& x) {
-    if (tuning_.link_friction && warm_ && !friction_.empty()) {
+    if (options_.tuning.link_friction && warm_ && !friction_.empty()) {
         const std::vector<RowState> warm = states;
         friction_.set_bounds(lcp_, friction_.mu);  // placeholders: every step sets them from the normals first
         Stage stage = linked_solve(states, x, /*from_answer=*/false);
@@ -41,10 +41,10 @@ PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vect
         stage = lemke(states, x);
         if (stage != Stage::Unfinished) return stage == Stage::Finished ? PolicyOutcome::Converged : PolicyOutcome::NotSpd;
     }
-    const PolicyOutcome frozen = solve_frozen(fixed_, lcp_, friction_, budget_, states, x);
+    const PolicyOutcome frozen = solve_frozen(fixed_, lcp_, friction_, budget(), states, x);
     if (frozen == PolicyOutcome::NotSpd || friction_.empty()) return frozen;
     bool budget_spent = frozen == PolicyOutcome::BudgetSpent;
-    if (tuning_.link_friction) {
+    if (options_.tuning.link_friction) {
         for (const bool from_lemke : {false, true}) {
             const Stage stage = from_lemke ? lemke(states, x) : linked_solve(states, x, /*from_answer=*/true);
             if (stage != Stage::Unfinished) return stage == Stage::Finished ? PolicyOutcome::Converged : PolicyOutcome::NotSpd;
@@ -53,8 +53,8 @@ PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vect
         // 92 % from the Frozen answer) and re-solve with its bounds fixed first: that iterate may
         // be consistent in its friction but not yet a solution of the other rows
         friction_.set_bounds(lcp_, friction_.targets(x));
-        ++rounds_;
-        const FixedOutcome o = fixed_.solve(states, x, budget_);
+        ++counters_.friction_rounds;
+        const FixedOutcome o = fixed_.solve(states, x, budget());
         if (o == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
         budget_spent = budget_spent || o == FixedOutcome::BudgetSpent;
     }
@@ -65,16 +65,16 @@ PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vect
 /// or Tuning::max_friction_rounds. budget_spent: an earlier fixed-bound solve of this answer ran
 /// out of steps (its status then says so).
 PolicyOutcome ConsistentFriction::outer_rounds(std::vector<RowState>& states, std::vector<double>& x, bool budget_spent) {
-    const double d = tuning_.friction_damping > 0 && tuning_.friction_damping <= 1 ? tuning_.friction_damping : 1.0;
+    const double d = options_.tuning.friction_damping > 0 && options_.tuning.friction_damping <= 1 ? options_.tuning.friction_damping : 1.0;
     FrictionBoundUpdate update(d);
     for (;;) {
-        if (friction_.consistent(lcp_, tolerance_, states, x))
+        if (friction_.consistent(lcp_, options_.tolerance, states, x))
             return budget_spent ? PolicyOutcome::BudgetSpent : PolicyOutcome::Converged;
-        if (rounds_ >= tuning_.max_friction_rounds)
+        if (counters_.friction_rounds >= options_.tuning.max_friction_rounds)
             return budget_spent ? PolicyOutcome::BudgetSpent : PolicyOutcome::FrictionInconsistent;
         friction_.set_bounds(lcp_, update.next(friction_.bounds(lcp_), friction_.targets(x)));
-        ++rounds_;
-        const FixedOutcome o = fixed_.solve(states, x, budget_);
+        ++counters_.friction_rounds;
+        const FixedOutcome o = fixed_.solve(states, x, budget());
         if (o == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
         budget_spent = budget_spent || o == FixedOutcome::BudgetSpent;
     }
@@ -88,11 +88,11 @@ ConsistentFriction::Stage ConsistentFriction::linked_solve(std::vector<RowState>
     if (from_answer) friction_.set_bounds(lcp_, friction_.targets(x));
     friction_.link(lcp_);
     ++counters_.linked_solves;
-    const FixedOutcome o = fixed_.solve(states, x, tuning::kLinkedBudgetFactor * budget_);
+    const FixedOutcome o = fixed_.solve(states, x, tuning::kLinkedBudgetFactor * budget());
     lcp_.friction_normal.clear();
     lcp_.friction_mu.clear();
     if (o == FixedOutcome::NotSpd) return Stage::NotSpd;
-    return o == FixedOutcome::Converged && friction_.consistent(lcp_, tolerance_, states, x) ? Stage::Finished
+    return o == FixedOutcome::Converged && friction_.consistent(lcp_, options_.tolerance, states, x) ? Stage::Finished
                                                                                                    : Stage::Unfinished;
 }
 
@@ -101,7 +101,7 @@ ConsistentFriction::Stage ConsistentFriction::linked_solve(std::vector<RowState>
 /// certifies it to the loop's own tolerance (usually in one step). Runs once per solve;
 /// Unfinished leaves states and x as they came in.
 ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& states, std::vector<double>& x) {
-    if (lemke_tried_ || !tuning_.lemke_friction) return Stage::Unfinished;
+    if (lemke_tried_ || !options_.tuning.lemke_friction) return Stage::Unfinished;
     lemke_tried_ = true;
     const int variables = lemke_variables_at_most();
     const bool dense = lcp_.n() <= tuning::kLemkeMaxRows && variables <= tuning::kLemkeMaxVariables;
@@ -146,7 +146,7 @@ LemkeSolution ConsistentFriction::dense_lemke(const FrictionLcp& lcp) {
     LemkeSolution s;
     for (int attempt = 0; attempt < tuning::kLemkeAttempts && s.outcome != LemkeOutcome::Solved; ++attempt) {
         s = solve_lemke(lcp.M(), lcp.q(), spread_covering_vector(size, attempt), tuning::kLemkePivotsPerVariable * size + 10);
-        lemke_pivots_ += s.pivots;
+        counters_.lemke_pivots += s.pivots;
     }
     return s;
 }
@@ -162,7 +162,7 @@ LemkeSolution ConsistentFriction::sparse_lemke(const FrictionLcp& lcp, const std
     for (int attempt = 0; attempt < tuning::kLemkeAttempts && budget > 0; ++attempt) {
         s = solve_sparse_lemke(lcp.sparse_M(), lcp.q(), attempt == 0 ? guess : std::vector<char>{},
                                spread_covering_vector(size, attempt), budget);
-        lemke_pivots_ += s.pivots;
+        counters_.lemke_pivots += s.pivots;
         budget -= s.pivots;
         if (s.outcome == LemkeOutcome::Solved || s.outcome == LemkeOutcome::MaxPivots) break;
     }

@@ -46,14 +46,13 @@ public:
     /// warm: the solve starts from an earlier index set (Start::states), which stage 1 needs.
     ConsistentFriction(FixedBoundSolver& fixed, BoxedLcp& lcp, const FrictionSet& friction, const Options& options,
                        bool warm, PivotCounters& counters)
-        : fixed_(fixed), lcp_(lcp), friction_(friction), tuning_(options.tuning), tolerance_(options.tolerance),
-          budget_(std::max(1, options.max_pivots)), warm_(warm), counters_(counters) {}
+        : fixed_(fixed), lcp_(lcp), friction_(friction), options_(options), warm_(warm), counters_(counters) {}
 
     PolicyOutcome solve(std::vector<RowState>& states, std::vector<double>& x);
 
-    int rounds() const { return rounds_; }              ///< outer bound updates taken
-    int lemke_pivots() const { return lemke_pivots_; }  ///< complementary pivots of the Lemke stage
-    const std::string& note() const { return note_; }   ///< why the Lemke stage did not finish, if it ran
+    /// Why the Lemke stage did not finish, if it ran. The outer bound updates and Lemke's pivots
+    /// are counted in counters.friction_rounds and counters.lemke_pivots.
+    const std::string& note() const { return note_; }
 
 private:
     /// A stage either finished the problem (a certified consistent answer in states and x),
@@ -67,19 +66,17 @@ private:
     LemkeSolution dense_lemke(const FrictionLcp& lcp);
     LemkeSolution sparse_lemke(const FrictionLcp& lcp, const std::vector<char>& guess);
     PolicyOutcome outer_rounds(std::vector<RowState>& states, std::vector<double>& x, bool budget_spent);
+    /// Options::max_pivots, at least 1: the budget of each fixed-bound solve.
+    int budget() const { return std::max(1, options_.max_pivots); }
     /// An upper bound of the friction LCP's size (friction_lcp.h).
     int lemke_variables_at_most() const;
 
     FixedBoundSolver& fixed_;
     BoxedLcp& lcp_;
     const FrictionSet& friction_;
-    const Tuning& tuning_;
-    double tolerance_;
-    int budget_;  ///< Options::max_pivots, at least 1
+    const Options& options_;
     bool warm_;
     PivotCounters& counters_;
-    int rounds_ = 0;
-    int lemke_pivots_ = 0;
     bool lemke_tried_ = false;
     std::string note_;
 };

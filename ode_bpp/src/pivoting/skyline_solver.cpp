@@ -1,7 +1,7 @@
 // Alg. 2 (BppDown), Alg. 2 + 3 (BppSky) and ours (Bpp): L_FF from one factor L0 of Ap per shift.
 //
-// Index space: the permuted space of Ap throughout. L_ is the working factor; it equals L0_
-// except in columns >= dirty_from_ and, before that column, in the rows dirty_rows_: deleting
+// Index space: the permuted space of Ap throughout. L is the working factor; it equals L0
+// except in columns >= dirty_from_ and, before that column, in the rows dirty_rows: deleting
 // (or removing) the tight rows T of a step rewrites columns >= min T and zeroes the rows of T
 // (linalg/row_delete.h, skyline_cholesky's removed rows). So a step restores L0 by copying that
 // tail and those rows (SkylineMatrix::copy_rows_from), not everything from the first column
@@ -38,7 +38,8 @@ struct SkylineStorage {
     SkylineShape shape;
     std::optional<linalg::CostModel> cost;
     SkylineMatrix A_env, L0, L;
-    std::vector<int> dirty_rows, tight_rows;
+    std::vector<int> dirty_rows;  ///< rows of L that differ from L0 before SkylineSolver::dirty_from_
+    std::vector<int> tight_rows;
     std::vector<double> work;
 
     /// The shape and cost model of Ap's envelope: those already held when Ap's envelope is the
@@ -67,27 +68,26 @@ SkylineStorage& prepared(SkylineBuffers& buffers, const linalg::SymmetricRows& A
 class SkylineSolver final : public FreeSolver {
 public:
     SkylineSolver(const linalg::SymmetricRows& A, SkylineVariant variant, SkylineStorage& storage)
-        : A_(A), variant_(variant), shape_(storage.shape), cost_(*storage.cost), A_env_(storage.A_env), L0_(storage.L0),
-          L_(storage.L), dirty_rows_(storage.dirty_rows), tight_rows_(storage.tight_rows), work_(storage.work) {}
+        : A_(A), variant_(variant), s_(storage) {}
 
     /// Alg. 2 line 2: L0 L0^T = Ap + shift I inside the envelope.
     bool prepare(double shift) override {
         load_matrix(shift);
-        L0_ = A_env_;
-        if (linalg::skyline_cholesky(L0_, 0, {}) >= 0) return false;
-        L_ = L0_;
-        dirty_from_ = shape_.n;
-        dirty_rows_.clear();
+        s_.L0 = s_.A_env;
+        if (linalg::skyline_cholesky(s_.L0, 0, {}) >= 0) return false;
+        s_.L = s_.L0;
+        dirty_from_ = s_.shape.n;
+        s_.dirty_rows.clear();
         last_factor_ = nullptr;
         return true;
     }
 
     FactorOutcome solve_free(const std::vector<char>& tight, std::vector<double>& x, bool fresh) override {
         collect_tight(tight);
-        for (int i : tight_rows_) x[i] = 0;
-        if (tight_rows_.empty()) {  // L_FF = L0 itself, a fresh factor
-            last_factor_ = &L0_;
-            linalg::skyline_solve(L0_, x.data());
+        for (int i : s_.tight_rows) x[i] = 0;
+        if (s_.tight_rows.empty()) {  // L_FF = L0 itself, a fresh factor
+            last_factor_ = &s_.L0;
+            linalg::skyline_solve(s_.L0, x.data());
             return FactorOutcome::Refactored;
         }
         FactorOutcome outcome = fresh || prefers_refactor() ? refactor_tail(tight) : delete_rows();
@@ -98,66 +98,66 @@ public:
             last_factor_ = nullptr;
             return outcome;
         }
-        last_factor_ = &L_;
-        linalg::skyline_solve(L_, x.data());
+        last_factor_ = &s_.L;
+        linalg::skyline_solve(s_.L, x.data());
         return outcome;
     }
 
     void solve_again(std::vector<double>& x) override {
-        for (int i : tight_rows_) x[i] = 0;
+        for (int i : s_.tight_rows) x[i] = 0;
         if (last_factor_ != nullptr) linalg::skyline_solve(*last_factor_, x.data());
     }
 
     /// Table 4: L0 with every tight row deleted against a fresh factor of A_FF.
     double factor_error(const std::vector<char>& tight) const override {
-        SkylineMatrix deleted = L0_;
+        SkylineMatrix deleted = s_.L0;
         std::vector<double> work;
-        for (int i = 0; i < shape_.n; ++i)
+        for (int i = 0; i < s_.shape.n; ++i)
             if (tight[i]) linalg::skyline_delete_row(deleted, i, work);
-        SkylineMatrix fresh = A_env_;
+        SkylineMatrix fresh = s_.A_env;
         if (linalg::skyline_cholesky(fresh, 0, tight) >= 0) return std::numeric_limits<double>::quiet_NaN();
         return linalg::factor_error(deleted, fresh, tight);
     }
 
 private:
-    /// A_env_ = Ap + shift I in the skyline shape (entries outside Ap's pattern stay 0).
+    /// s_.A_env = Ap + shift I in the skyline shape (entries outside Ap's pattern stay 0).
     void load_matrix(double shift) {
-        A_env_.reset(shape_);
+        s_.A_env.reset(s_.shape);
         for (int i = 0; i < A_.n(); ++i) {
-            A_env_.at(i, i) = A_.diag(i) + shift;
+            s_.A_env.at(i, i) = A_.diag(i) + shift;
             for (int k = A_.row_begin(i); k < A_.row_end(i); ++k)
-                if (A_.col(k) < i) A_env_.at(i, A_.col(k)) = A_.val(k);
+                if (A_.col(k) < i) s_.A_env.at(i, A_.col(k)) = A_.val(k);
         }
     }
 
     void collect_tight(const std::vector<char>& tight) {
-        tight_rows_.clear();
-        for (int i = 0; i < shape_.n; ++i)
-            if (tight[i]) tight_rows_.push_back(i);
+        s_.tight_rows.clear();
+        for (int i = 0; i < s_.shape.n; ++i)
+            if (tight[i]) s_.tight_rows.push_back(i);
     }
 
-    /// First column of L_ that this step needs restored to L0: min(dirty_from_, min T).
-    int restore_from() const { return std::min(dirty_from_, tight_rows_.front()); }
+    /// First column of s_.L that this step needs restored to L0: min(dirty_from_, min T).
+    int restore_from() const { return std::min(dirty_from_, s_.tight_rows.front()); }
 
     /// Bpp's cost model: the cheaper of deleting |T| rows and refactoring from the first tight
     /// column (docs/maths.md: deletion costs ~ |T| (m - i) height, refactoring ~ m height^2).
     bool prefers_refactor() const {
         if (variant_ != SkylineVariant::CostModel) return false;
-        return linalg::refactor_price(cost_, tight_rows_, restore_from()) < linalg::deletion_price(cost_, tight_rows_, restore_from());
+        return linalg::refactor_price(*s_.cost, s_.tight_rows, restore_from()) < linalg::deletion_price(*s_.cost, s_.tight_rows, restore_from());
     }
 
     /// Alg. 2 lines 7-11: L = L0 (BppDown: all of it, as the paper copies; else only the tail
     /// and the rows that differ), then DOWNDATE for each i in T, ascending.
     FactorOutcome delete_rows() {
         if (variant_ == SkylineVariant::DenseDelete) {
-            L_.copy_tail_from(L0_, 0);
+            s_.L.copy_tail_from(s_.L0, 0);
         } else {
             const int from = restore_from();
-            L_.copy_tail_from(L0_, from);
-            L_.copy_rows_from(L0_, dirty_rows_, from);
+            s_.L.copy_tail_from(s_.L0, from);
+            s_.L.copy_rows_from(s_.L0, s_.dirty_rows, from);
         }
-        assert(equal_in_envelope(L_, L0_));  // brute-force check of the restore (debug builds)
-        for (int i : tight_rows_) linalg::skyline_delete_row(L_, i, work_);
+        assert(equal_in_envelope(s_.L, s_.L0));  // brute-force check of the restore (debug builds)
+        for (int i : s_.tight_rows) linalg::skyline_delete_row(s_.L, i, s_.work);
         mark_dirty();
         return FactorOutcome::Deleted;
     }
@@ -165,13 +165,13 @@ private:
     /// L's columns < k0 = min T from L0 (the factor of the leading block is unchanged), columns
     /// >= k0 from Ap, then Cholesky from k0 with the tight rows removed.
     FactorOutcome refactor_tail(const std::vector<char>& tight) {
-        const int k0 = tight_rows_.front();
+        const int k0 = s_.tight_rows.front();
         const int from = restore_from();
-        copy_columns(L0_, from, k0);
-        L_.copy_rows_from(L0_, dirty_rows_, from);
-        L_.copy_tail_from(A_env_, k0);
+        copy_columns(s_.L0, from, k0);
+        s_.L.copy_rows_from(s_.L0, s_.dirty_rows, from);
+        s_.L.copy_tail_from(s_.A_env, k0);
         mark_dirty();
-        if (linalg::skyline_cholesky(L_, k0, tight) >= 0) return FactorOutcome::Breakdown;
+        if (linalg::skyline_cholesky(s_.L, k0, tight) >= 0) return FactorOutcome::Breakdown;
         return FactorOutcome::Refactored;
     }
 
@@ -185,29 +185,25 @@ private:
 #endif
 
     void mark_dirty() {
-        dirty_from_ = tight_rows_.front();
-        dirty_rows_ = tight_rows_;
+        dirty_from_ = s_.tight_rows.front();
+        s_.dirty_rows = s_.tight_rows;
     }
 
-    /// Columns [from, to) of source into L_ (same shape; columns are stored contiguously).
+    /// Columns [from, to) of source into s_.L (same shape; columns are stored contiguously).
     void copy_columns(const SkylineMatrix& source, int from, int to) {
         if (from >= to) return;
-        const auto& colptr = shape_.colptr;
+        const auto& colptr = s_.shape.colptr;
         std::copy(source.values().begin() + colptr[from], source.values().begin() + colptr[to],
-                  L_.values().begin() + colptr[from]);
+                  s_.L.values().begin() + colptr[from]);
     }
 
     const linalg::SymmetricRows& A_;
     const SkylineVariant variant_;
     // in the caller's SkylineBuffers
-    const SkylineShape& shape_;
-    const linalg::CostModel& cost_;
-    SkylineMatrix &A_env_, &L0_, &L_;
+    /// The buffers: shape, cost model, A's envelope, L0, the working factor L and scratch.
+    SkylineStorage& s_;
     int dirty_from_ = 0;
-    std::vector<int>& dirty_rows_;  ///< rows of L_ that differ from L0_ before dirty_from_
     const SkylineMatrix* last_factor_ = nullptr;  ///< L_FF of the latest successful solve_free
-    std::vector<int>& tight_rows_;
-    std::vector<double>& work_;
 };
 
 }  // namespace

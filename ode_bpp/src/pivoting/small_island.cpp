@@ -28,6 +28,34 @@ double entry(const Problem& p, int i, int j) {
 
 bool is_friction_row(const Problem& p, int i) { return p.findex != nullptr && p.findex[i] >= 0; }
 
+/// Eq. 6 densely: x_F = A_FF^-1 (b_F - A_FT x_T) for the free rows ws.free[0..nf) (original
+/// order) with x_F = 0 on entry, A_FF factored afresh in ws.factor; false when A_FF is not
+/// positive definite. x: n entries, in and out.
+bool solve_free_rows(const Problem& p, int nf, SmallIslandBuffers& ws, std::vector<double>& x) {
+    const int n = p.n;
+    const int* free = ws.free.data();
+    double* a = ws.factor.data();
+    for (int k = 0; k < nf; ++k) {
+        const int i = free[k];
+        double rhs = p.b[i];
+        for (int j = 0; j < n; ++j)
+            if (x[j] != 0) rhs -= entry(p, i, j) * x[j];  // A_FT x_T: x_F is still 0
+        ws.rhs[k] = rhs;
+        double* row = a + static_cast<std::ptrdiff_t>(k) * n;
+        for (int l = 0; l < k; ++l) row[l] = p.A[static_cast<std::ptrdiff_t>(i) * p.lda + free[l]];
+        row[k] = ws.diagonal[k] = p.A[static_cast<std::ptrdiff_t>(i) * p.lda + i];
+    }
+    if (linalg::dense_cholesky(a, nf, n, ws.diagonal.data()) >= 0) return false;
+    linalg::dense_cholesky_solve(a, nf, n, ws.rhs.data());
+    for (int k = 0; k < nf; ++k) x[free[k]] = ws.rhs[k];
+    return true;
+}
+
+/// Júdice-Pires block step: every infeasible row changes set at once (Eq. 4).
+void flip_all(const Infeasibility& inf, std::vector<RowState>& states) {
+    for (int k = 0; k < inf.count(); ++k) states[inf.rows[k]] = inf.flip_to[k];
+}
+
 /// Block principal pivoting on the fixed bounds ws.lo, ws.hi (Alg. 1 with Eq. 4), one
 /// refactorization of A_FF per step.
 class SmallIsland {
@@ -145,29 +173,11 @@ private:
         ++r_.pivoting.pivots;
         ++r_.pivoting.refactor_steps;
         if (o_.record_steps) r_.pivoting.tight_per_step.push_back(tight);
-        if (nf > 0 && !solve_free(x, nf)) return false;
+        if (nf > 0 && !solve_free_rows(p_, nf, ws_, x)) return false;
         refresh_w(x);
         return true;
     }
 
-    bool solve_free(std::vector<double>& x, int nf) {
-        const int* free = ws_.free.data();
-        double* a = ws_.factor.data();
-        for (int k = 0; k < nf; ++k) {
-            const int i = free[k];
-            double rhs = p_.b[i];
-            for (int j = 0; j < n_; ++j)
-                if (x[j] != 0) rhs -= entry(p_, i, j) * x[j];  // A_FT x_T: x_F is still 0
-            ws_.rhs[k] = rhs;
-            double* row = a + static_cast<std::ptrdiff_t>(k) * n_;
-            for (int l = 0; l < k; ++l) row[l] = p_.A[static_cast<std::ptrdiff_t>(i) * p_.lda + free[l]];
-            row[k] = ws_.diagonal[k] = p_.A[static_cast<std::ptrdiff_t>(i) * p_.lda + i];
-        }
-        if (linalg::dense_cholesky(a, nf, n_, ws_.diagonal.data()) >= 0) return false;
-        linalg::dense_cholesky_solve(a, nf, n_, ws_.rhs.data());
-        for (int k = 0; k < nf; ++k) x[free[k]] = ws_.rhs[k];
-        return true;
-    }
 
     /// w = A x - b and the row scales |A||x| + |b| (residuals.h).
     void refresh_w(const std::vector<double>& x) { residual_vectors(p_, ConstStrided{x.data(), 1}, ws_.w, ws_.scale); }
@@ -179,9 +189,6 @@ private:
         return ws_.inf;
     }
 
-    static void flip_all(const Infeasibility& inf, std::vector<RowState>& states) {
-        for (int k = 0; k < inf.count(); ++k) states[inf.rows[k]] = inf.flip_to[k];
-    }
 
     /// Murty's rule in the driver's orientation: only the infeasible row of largest index moves.
     void flip_largest(const Infeasibility& inf, std::vector<RowState>& states) {

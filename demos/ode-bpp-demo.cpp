@@ -63,8 +63,10 @@ struct Args {
     std::string csv;
     std::string capture_dir;
     int capture_every = 1;
+    bool capture_failures = false;
     int cond_every = 30;
     ode_bpp::FrictionMode friction = ode_bpp::FrictionMode::Frozen;
+    std::optional<int> max_pivots;
     bool quiet = false;
     bool list = false;
 };
@@ -88,8 +90,8 @@ std::string valid_scenes() {
 void print_usage(FILE* out) {
     std::fprintf(out,
                  "usage: ode-bpp-demo SCENE [--solver NAME] [--seconds S] [--cfm X | --compliance C]\n"
-                 "                    [--csv FILE] [--capture DIR [--capture-every K]] [--cond-every N]\n"
-                 "                    [--friction MODE] [--quiet]\n"
+                 "                    [--csv FILE] [--capture DIR [--capture-every K | --capture-failures]]\n"
+                 "                    [--cond-every N] [--friction MODE] [--max-pivots N] [--quiet]\n"
                  "       ode-bpp-demo SCENE --compare NAME,NAME[,...] [same options]\n"
                  "       ode-bpp-demo --list | --help\n"
                  "Steps SCENE with an MLCP solver inside dWorldStep and reports solve times, pivots,\n"
@@ -101,8 +103,11 @@ void print_usage(FILE* out) {
                  "  --compliance  the paper's compliance c; sets CFM = c / h (paper: 1e-6 .. 1e-10)\n"
                  "  --csv         one row per island per step\n"
                  "  --capture     writes every island's MLCP (every K-th step) into DIR (created)\n"
+                 "  --capture-failures  with --capture: only the islands, of every step, that the solver\n"
+                 "                answered through a fallback or handed to ODE's Dantzig\n"
                  "  --cond-every  estimate cond(A) of the largest island every N steps (default 30; 0: never)\n"
                  "  --friction    frozen|consistent: friction mode of ode-bpp's solvers (default frozen)\n"
+                 "  --max-pivots  pivot budget per fixed-bound solve of ode-bpp's solvers (default 100)\n"
                  "  --quiet       no progress lines on stderr\n"
                  "scenes: %s (paper: the paper's six, in turn)\n"
                  "solvers: %s\n"
@@ -154,6 +159,8 @@ Args parse_args(int argc, char** argv) {
         else if (arg == "--csv") a.csv = value();
         else if (arg == "--capture") a.capture_dir = value();
         else if (arg == "--capture-every") a.capture_every = static_cast<int>(parse_number(arg, value()));
+        else if (arg == "--capture-failures") a.capture_failures = true;
+        else if (arg == "--max-pivots") a.max_pivots = static_cast<int>(parse_number(arg, value()));
         else if (arg == "--cond-every") a.cond_every = static_cast<int>(parse_number(arg, value()));
         else if (arg == "--friction") {
             const std::string mode = value();
@@ -173,6 +180,9 @@ Args parse_args(int argc, char** argv) {
     if (a.seconds && *a.seconds <= 0) usage_error("--seconds must be positive");
     if ((a.cfm && *a.cfm < 0) || (a.compliance && *a.compliance < 0)) usage_error("CFM must be >= 0");
     if (a.capture_every < 1 || a.cond_every < 0) usage_error("--capture-every >= 1, --cond-every >= 0");
+    if (a.capture_failures && a.capture_dir.empty()) usage_error("--capture-failures needs --capture DIR");
+    if (a.capture_failures && a.capture_every != 1) usage_error("--capture-failures captures every step: no --capture-every");
+    if (a.max_pivots && *a.max_pivots < 1) usage_error("--max-pivots must be at least 1");
     if (a.compare && a.solvers.size() < 2) usage_error("--compare needs at least two solvers");
     for (const std::string& s : a.solvers) {
         if (!is_solver_registered(s)) usage_error("unknown solver '" + s + "'; valid: " + dListMLCPSolvers());
@@ -197,6 +207,10 @@ struct Recorder {
     std::vector<IslandRecord> islands;   ///< of the current step
     std::string capture_dir, scene, solver;
     bool capture_this_step = false;
+    /// --capture-failures: the island as ODE handed it over, written only if its solve did not
+    /// end dMLCPSolved (the before call cannot know; the after call no longer has A intact).
+    bool capture_failures = false;
+    std::optional<ode_bpp::MlcpFile> pending;
     long step = 0;
     double cfm = 0, erp = 0;
     std::string capture_error;
@@ -234,19 +248,30 @@ void copy_before(const dMLCP& p, IslandRecord& r) {
     r.mass_ratio = p.joints ? island_mass_ratio(p) : 1.0;
 }
 
-void capture_island(Recorder& rec, const dMLCP& p, size_t island) {
-    namespace fs = std::filesystem;
-    char file[256];
-    std::snprintf(file, sizeof file, "%s-%s-s%06ld-i%02zu.mlcp", rec.scene.c_str(),
-                  rec.solver.c_str(), rec.step, island);
+ode_bpp::Metadata capture_metadata(const Recorder& rec, size_t island) {
     ode_bpp::Metadata meta;
     meta.set("scene", rec.scene);
     meta.set("solver", rec.solver);
     meta.set("frame", std::to_string(rec.step));
     meta.set("island", std::to_string(island));
+    return meta;
+}
+
+std::filesystem::path capture_path(const Recorder& rec, size_t island) {
+    char file[256];
+    std::snprintf(file, sizeof file, "%s-%s-s%06ld-i%02zu.mlcp", rec.scene.c_str(), rec.solver.c_str(), rec.step,
+                  island);
+    return std::filesystem::path(rec.capture_dir) / file;
+}
+
+/// Writes `file` (or, without one, the island p as ODE hands it over) and counts it.
+void capture_island(Recorder& rec, const dMLCP& p, size_t island, const ode_bpp::MlcpFile* file = nullptr) {
+    namespace fs = std::filesystem;
     std::string error;
-    const fs::path path = fs::path(rec.capture_dir) / file;
-    if (!ode_bpp::write_mlcp_from_ode(path.string(), p, meta, &error)) {
+    const fs::path path = capture_path(rec, island);
+    const bool written = file != nullptr ? ode_bpp::write_mlcp(path.string(), *file, &error)
+                                         : ode_bpp::write_mlcp_from_ode(path.string(), p, capture_metadata(rec, island), &error);
+    if (!written) {
         if (rec.capture_error.empty()) rec.capture_error = error;
         return;
     }
@@ -261,8 +286,19 @@ void observe(const dMLCP* p, const dMLCPIslandStats* stats, void* data) {
     if (stats == nullptr) {
         rec.islands.emplace_back();
         copy_before(*p, rec.islands.back());
-        if (rec.capture_this_step) capture_island(rec, *p, rec.islands.size() - 1);
+        if (rec.capture_failures) {
+            std::string error;
+            rec.pending = ode_bpp::capture_from_ode(*p, capture_metadata(rec, rec.islands.size() - 1), &error);
+            if (!rec.pending && rec.capture_error.empty()) rec.capture_error = error;
+        } else if (rec.capture_this_step) {
+            capture_island(rec, *p, rec.islands.size() - 1);
+        }
         return;
+    }
+    if (rec.capture_failures && rec.pending && stats->status != dMLCPSolved) {
+        rec.pending->meta.set("status", stats->status == dMLCPFailed ? "failed" : "solved-by-fallback");
+        if (stats->fallback != nullptr) rec.pending->meta.set("fallback", stats->fallback);
+        capture_island(rec, *p, rec.islands.size() - 1, &*rec.pending);
     }
     // SceneWorld attaches no threading implementation, so ODE solves the islands one at a time:
     // the "after" call belongs to the latest "before"
@@ -397,7 +433,9 @@ struct RunOptions {
     bool quiet = false;
     std::string capture_dir;
     int capture_every = 1;
+    bool capture_failures = false;
     ode_bpp::FrictionMode friction = ode_bpp::FrictionMode::Frozen;
+    std::optional<int> max_pivots;
     std::ofstream* csv = nullptr;
 };
 
@@ -483,7 +521,7 @@ void on_ode_message(int number, const char* format, va_list ap) {
 // Returns false when the run must stop (the world blew up, or a capture file was lost).
 bool advance(Scene& scene, SceneWorld& w, Recorder& rec, const RunOptions& opt, RunResult& run) {
     rec.step = run.steps;
-    rec.capture_this_step = !opt.capture_dir.empty() && run.steps % opt.capture_every == 0;
+    rec.capture_this_step = !opt.capture_dir.empty() && !opt.capture_failures && run.steps % opt.capture_every == 0;
     scene.control(w, w.time());
     const Clock::time_point t0 = Clock::now();
     const bool ok = w.step();
@@ -504,10 +542,12 @@ RunResult run_scene(const std::string& name, const RunOptions& opt) {
     SceneWorld w(opt.params);
     ode_bpp::WorldSettings settings;
     settings.options.friction = opt.friction;
+    if (opt.max_pivots) settings.options.max_pivots = *opt.max_pivots;
     ode_bpp::set_world_settings(w.world(), settings);
     scene->build(w);
     Recorder rec;
     rec.capture_dir = opt.capture_dir;
+    rec.capture_failures = opt.capture_failures;
     rec.scene = name;
     rec.solver = run.solver;
     dWorldSetMLCPObserver(w.world(), &observe, &rec);
@@ -713,7 +753,9 @@ int main(int argc, char** argv) {
             opt.quiet = args.quiet;
             opt.capture_dir = args.capture_dir;
             opt.capture_every = args.capture_every;
+            opt.capture_failures = args.capture_failures;
             opt.friction = args.friction;
+            opt.max_pivots = args.max_pivots;
             opt.csv = csv.is_open() ? &csv : nullptr;
             runs.push_back(run_scene(scene, opt));
             if (!runs.back().capture_error.empty()) {

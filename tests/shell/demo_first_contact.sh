@@ -28,6 +28,21 @@ grep -q "^capture: $files files, $bytes bytes (.* MB) in $WORK/corpus$" "$WORK/g
     || { show good_capture; fail "--capture does not report what is on disk ($files files, $bytes bytes)"; }
 note "capture: $(grep '^capture:' "$WORK/good_capture.out")"
 
+# --capture-failures: only the islands whose solve did not end dMLCPSolved, with why in the file;
+# a pivot budget of 1 makes boxstack's islands fail, the default budget does not
+capture failures "$demo" boxstack --seconds 1 --quiet --cond-every 0 --max-pivots 1 --capture "$WORK/failures" --capture-failures
+(( STATUS == 0 )) || { show failures; fail "--capture-failures: status $STATUS"; }
+failed=$(find "$WORK/failures" -name '*.mlcp' | wc -l)
+(( failed > 0 )) || { show failures; fail "--capture-failures with --max-pivots 1 wrote no file"; }
+unmarked=$(grep -aL -E 'status=(failed|solved-by-fallback)' "$WORK"/failures/*.mlcp | wc -l)
+(( unmarked == 0 )) || fail "--capture-failures: $unmarked of $failed files do not say how the solve ended"
+capture no_failures "$demo" boxstack --seconds 1 --quiet --cond-every 0 --capture "$WORK/none" --capture-failures
+(( STATUS == 0 )) || { show no_failures; fail "--capture-failures (default budget): status $STATUS"; }
+(( $(find "$WORK/none" -name '*.mlcp' | wc -l) == 0 )) || fail "--capture-failures wrote islands that were solved"
+capture failures_every "$demo" boxstack --seconds 0.1 --quiet --capture "$WORK/x" --capture-failures --capture-every 2
+(( STATUS == 2 )) || { show failures_every; fail "--capture-failures with --capture-every: status $STATUS, expected 2"; }
+note "capture-failures: $failed islands of boxstack at --max-pivots 1"
+
 # --- a run shorter than the criterion
 capture short "$demo" crane --seconds 1 --quiet --cond-every 0
 (( STATUS == 0 )) || { show short; fail "crane --seconds 1: status $STATUS, expected 0 (criterion not evaluated)"; }

@@ -104,8 +104,8 @@ const PileScene kScenes[] = {
 /// (docs/benchmarks.md): two pile islands of the bin (rows 0: the step's island of at least
 /// min_rows / 2 rows), where Lemke's path runs out of its budget or passes a nearly singular basis
 /// first; and a 69-row rock pile island that ends Converged by the per-row scaled residual
-/// (4.5e-10) at a relative one of 2.4e-8, far above its rounding floor (~1e-12): the per-row
-/// tolerance lets the pivoting stop there, since its relative measure divides by ||b|| only.
+/// (4.5e-10) at a relative one of 2.4e-8, far above its rounding floor (~1e-12): a friction
+/// impulse exceeds mu times its normal by 5.2e-7, within the consistency test's per-row tolerance.
 struct OpenIsland {
     std::string scene;
     long step;

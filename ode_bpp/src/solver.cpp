@@ -4,7 +4,7 @@
 // Fallback chain, in order:
 //  1. Invalid input (validate(), a warm start of the wrong size, a non-finite or negative
 //     tolerance): Status::InvalidInput, x = 0 (when x is writable), message names the row.
-//  2. BPP methods: a Cholesky pivot that is not safely positive (pivot_breaks_down) makes the
+//  2. BPP methods: a Cholesky pivot that is not safely positive (linalg/cholesky_pivot.h, pivot_breaks_down) makes the
 //     fixed-bound solve restart with A + delta I, delta = 1e-12 * max_i A_ii, growing x100 up to
 //     1e-6 * max_i A_ii; the answer then has fallback "regularized", Result::regularization = delta
 //     and status FallbackUsed (or MaxIterations / FrictionNotConsistent if those also happened).

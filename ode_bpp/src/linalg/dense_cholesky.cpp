@@ -1,7 +1,8 @@
 #include "linalg/dense_cholesky.h"
 
 #include <cmath>
-#include <limits>
+
+#include "linalg/cholesky_pivot.h"
 
 namespace ode_bpp::linalg {
 
@@ -12,10 +13,6 @@ double dot(const double* x, const double* y, int k) {
     double sum = 0;
     for (int j = 0; j < k; ++j) sum += x[j] * y[j];
     return sum;
-}
-
-bool breaks_down(double pivot, double diagonal) {
-    return !(pivot > std::numeric_limits<double>::epsilon() * diagonal);
 }
 
 }  // namespace
@@ -30,7 +27,7 @@ int dense_cholesky(double* a, int n, int lda, const double* diagonal) {
         }
         // d_i = A(i,i) - |L(i,0:i)|²
         const double pivot = row_i[i] - dot(row_i, row_i, i);
-        if (breaks_down(pivot, diagonal[i])) return i;
+        if (pivot_breaks_down(pivot, diagonal[i])) return i;
         row_i[i] = std::sqrt(pivot);
     }
     return -1;

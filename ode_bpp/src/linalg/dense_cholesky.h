@@ -14,7 +14,7 @@ namespace ode_bpp::linalg {
 /// diagonal: input, n entries, A's diagonal before factoring (the breakdown test's scale;
 ///    it may alias nothing in a).
 /// Returns -1 on success, else the first column k whose pivot d_k = A(k,k) - sum_j L(k,j)²
-/// breaks down (pivot_breaks_down of pivoting/free_solver.h: d_k <= eps A(k,k), or NaN), with
+/// breaks down (pivot_breaks_down of cholesky_pivot.h: d_k <= eps A(k,k), or NaN), with
 /// columns 0 .. k-1 factored.
 int dense_cholesky(double* a, int n, int lda, const double* diagonal);
 

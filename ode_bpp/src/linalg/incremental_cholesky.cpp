@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
+#include "linalg/cholesky_pivot.h"
 
 namespace ode_bpp::linalg {
 
@@ -31,8 +31,7 @@ bool IncrementalCholesky::append(const double* column, double diagonal) {
     l = Eigen::Map<const Eigen::VectorXd>(column, size_);
     FactorMap(L_.data(), size_, size_, Eigen::OuterStride<>(capacity_)).triangularView<Eigen::Lower>().solveInPlace(l);
     const double pivot = diagonal - l.squaredNorm();
-    // the breakdown test of dense_cholesky.h: d <= eps M_jj
-    if (!(pivot > std::numeric_limits<double>::epsilon() * diagonal)) return false;
+    if (pivot_breaks_down(pivot, diagonal)) return false;
     row(size_)[size_] = std::sqrt(pivot);
     ++size_;
     return true;

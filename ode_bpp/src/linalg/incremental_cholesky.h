@@ -18,7 +18,7 @@ public:
 
     /// Appends index j as S's last: column holds M(S_k, j) for k = 0 .. size()-1 in S's order,
     /// diagonal M_jj. The new row of L is l = L⁻¹ column, its pivot M_jj - |l|². False, leaving
-    /// the factor unchanged, when that pivot breaks down (pivot_breaks_down: j is dependent on S
+    /// the factor unchanged, when that pivot breaks down (pivot_breaks_down of cholesky_pivot.h: j is dependent on S
     /// to machine precision).
     bool append(const double* column, double diagonal);
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "linalg/cholesky_pivot.h"
 #include "linalg/dense_cholesky.h"
 
 #include "pivoting/kept_buffers_impl.h"
@@ -74,7 +75,7 @@ private:
         if (llt.info() != Eigen::Success) return false;
         for (int k = 0; k < nf; ++k) {
             const double l = leading(k, k);
-            if (pivot_breaks_down(l * l, ws_.diagonal[k])) return false;
+            if (linalg::pivot_breaks_down(l * l, ws_.diagonal[k])) return false;
         }
         return true;
     }

@@ -9,10 +9,6 @@ namespace ode_bpp::pivoting {
 
 double FreeSolver::factor_error(const std::vector<char>&) const { return std::numeric_limits<double>::quiet_NaN(); }
 
-bool pivot_breaks_down(double pivot_squared, double diagonal) {
-    return !(pivot_squared > std::numeric_limits<double>::epsilon() * diagonal);
-}
-
 std::unique_ptr<FreeSolver> make_free_solver(Method method, const linalg::SymmetricRows& Ap, StrategyBuffers& buffers) {
     switch (method) {
         case Method::BppChol: return make_dense_refactor_solver(Ap, buffers.dense);

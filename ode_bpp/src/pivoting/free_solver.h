@@ -36,11 +36,6 @@ public:
     virtual double factor_error(const std::vector<char>& tight) const;
 };
 
-/// True when a Cholesky pivot d = L_kk^2 of a column whose diagonal entry was a_kk is not safely
-/// positive: d <= eps * a_kk means column k is dependent on the earlier ones to machine
-/// precision (or d is NaN), and the factor would amplify rounding by 1/eps.
-bool pivot_breaks_down(double pivot_squared, double diagonal);
-
 struct StrategyBuffers;  // strategies.h
 
 /// The strategy of a BPP method (BppChol, BppDown, BppSky, Bpp) on Ap; null for other methods

@@ -24,6 +24,12 @@ double free_residual(const Iterate& it, const std::vector<char>& tight) {
     return worst;
 }
 
+void classify_iterate(const BoxedLcp& lcp, const Iterate& it, const std::vector<RowState>& states,
+                      const std::vector<double>& x, double tolerance, Infeasibility& inf) {
+    const auto diag = [&lcp](int i) { return lcp.A->diag(i) + lcp.shift; };
+    classify_rows(lcp.n(), states, x, it.w, it.lo, it.hi, diag, it.scale, tolerance, inf);
+}
+
 double accuracy_limit(double tolerance, int n) {
     return std::max(0.1 * tolerance, 100.0 * n * std::numeric_limits<double>::epsilon());
 }

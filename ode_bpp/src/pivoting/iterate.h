@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pivoting/boxed_lcp.h"
+#include "pivoting/classify_row.h"
 
 namespace ode_bpp::pivoting {
 
@@ -19,6 +20,11 @@ void refresh_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate
 
 /// max over free rows (tight[i] == 0) of |w_i| / scale_i: Eq. 6's backward error, row by row.
 double free_residual(const Iterate& it, const std::vector<char>& tight);
+
+/// Eq. 4 row by row on (A + shift I, b) at x and the index set `states` (classify_row.h), with the
+/// bounds and scales of `it`; the infeasible rows go to `inf`.
+void classify_iterate(const BoxedLcp& lcp, const Iterate& it, const std::vector<RowState>& states,
+                      const std::vector<double>& x, double tolerance, Infeasibility& inf);
 
 /// A fresh Cholesky solve misses Eq. 6 by about n eps relative to |A||x| + |b|; a tenth of the
 /// classification tolerance keeps the pivoting decisions unaffected by the factor. A factor

@@ -286,8 +286,7 @@ private:
 
     /// Eq. 4 row by row (classify_row.h).
     const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
-        const auto diag = [this](int i) { return lcp_.A->diag(i) + lcp_.shift; };
-        classify_rows(n_, states, x, it().w, it().lo, it().hi, diag, it().scale, settings_.tolerance, ws_.inf);
+        classify_iterate(lcp_, it(), states, x, settings_.tolerance, ws_.inf);
         return ws_.inf;
     }
 

@@ -55,8 +55,7 @@ public:
             ++counters_.update_steps;
             if (record_steps_) counters_.tight_per_step.push_back(n_ - ws_.factor.size());
             if (!solve(states, x)) return give_up(states, LoopOutcome::Breakdown);
-            const auto diag = [this](int i) { return lcp_.A->diag(i) + lcp_.shift; };
-            classify_rows(n_, states, x, ws_.it.w, ws_.it.lo, ws_.it.hi, diag, ws_.it.scale, tolerance_, ws_.inf);
+            classify_iterate(lcp_, ws_.it, states, x, tolerance_, ws_.inf);
             if (ws_.inf.count() == 0) return LoopOutcome::Converged;
             if (ws_.inf.count() < least_count) {
                 least_count = ws_.inf.count();

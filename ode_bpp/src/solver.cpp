@@ -211,11 +211,9 @@ const linalg::SymmetricRows& rows_of(const Problem& problem, linalg::SymmetricRo
 /// x written. answer: scratch, n entries.
 bool solve_small(const Problem& problem, const Options& options, const Start& start, pivoting::SmallIslandBuffers& buffers,
                  std::vector<double>& answer, Result& r, Strided x) {
-    Residuals residuals;
-    if (!pivoting::solve_small_island(problem, options, start, buffers, answer, r, residuals)) return false;
+    if (!pivoting::solve_small_island(problem, options, start, buffers, answer, r)) return false;
     r.method = options.method;
     r.friction = options.friction;
-    r.residuals = residuals;
     agree_with_residual(options, r);
     for (int i = 0; i < problem.n; ++i) x[i] = answer[i];
     return true;

@@ -270,7 +270,7 @@ bool takes_small_island(const Problem& problem, const Options& options) {
 }
 
 bool solve_small_island(const Problem& problem, const Options& options, const Start& start, SmallIslandBuffers& ws,
-                        std::vector<double>& x, Result& r, Residuals& residuals) {
+                        std::vector<double>& x, Result& r) {
     std::vector<RowState>& states = r.states;
     states.assign(static_cast<std::size_t>(problem.n), RowState::Free);
     if (!start.states.empty()) states.assign(start.states.begin(), start.states.end());
@@ -283,7 +283,7 @@ bool solve_small_island(const Problem& problem, const Options& options, const St
     r.factor_error = std::numeric_limits<double>::quiet_NaN();
     // the loop's w and scale are those of x: every step refreshes them, a polish round that
     // fails restores them with x
-    residuals = dense_residuals_from(problem, ConstStrided{x.data(), 1}, ws.w, ws.scale, &states);
+    r.residuals = dense_residuals_from(problem, ConstStrided{x.data(), 1}, ws.w, ws.scale, &states);
     return true;
 }
 

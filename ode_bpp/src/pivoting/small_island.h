@@ -43,10 +43,10 @@ bool takes_small_island(const Problem& problem, const Options& options);
 
 /// Solves a validated problem that takes_small_island accepts, from start.states (or all free).
 /// x: out, n entries. r: out; on success status Converged, the pivot counters (every step a
-/// refactorization), tight_per_step, states and tight; residuals: out, those of x (as
-/// compute_residuals gives them). Returns false, leaving x, r and residuals unspecified, when the
-/// island needs the general driver (a spent budget, a breakdown, or an answer that is not finite).
+/// refactorization), tight_per_step, states, tight and the residuals of x (as compute_residuals
+/// gives them). Returns false, leaving x and r unspecified, when the island needs the general
+/// driver (a spent budget, a breakdown, or an answer that is not finite).
 bool solve_small_island(const Problem& problem, const Options& options, const Start& start, SmallIslandBuffers& buffers,
-                        std::vector<double>& x, Result& r, Residuals& residuals);
+                        std::vector<double>& x, Result& r);
 
 }  // namespace ode_bpp::pivoting

@@ -149,7 +149,21 @@ void assemble_dense_lower(const dMLCP& island, double* A, int lda, AssemblyBuffe
         double* row = A + static_cast<std::ptrdiff_t>(i) * lda;
         std::fill(row, row + i, 0.0);
     }
-    assemble_joints(island, buffers, [A, lda](int i, int j, double a) { A[static_cast<std::ptrdiff_t>(i) * lda + j] = a; });
+    const auto keep = [A, lda](int i, int j, double a) { A[static_cast<std::ptrdiff_t>(i) * lda + j] = a; };
+    // the earlier joints sharing a body, by a scan of all pairs (O(nj^2) <= O(m^2), the cost of
+    // clearing A): on a small island the incidence lists cost more than the scan
+    const auto shares_body = [](const dMLCPJoint& p, const dMLCPJoint& q) {
+        for (int body : p.body)
+            if (body >= 0 && (q.body[0] == body || q.body[1] == body)) return true;
+        return false;
+    };
+    for (int pj = 0; pj < island.nj; ++pj) {
+        std::vector<int>& neighbours = buffers.neighbours;
+        neighbours.clear();
+        for (int qj = 0; qj < pj; ++qj)
+            if (shares_body(island.joints[pj], island.joints[qj])) neighbours.push_back(qj);
+        assemble_joint(island, pj, neighbours, buffers.sides, keep);
+    }
 }
 
 }  // namespace ode_bpp::ode

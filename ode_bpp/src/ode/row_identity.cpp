@@ -69,15 +69,28 @@ void RowStateMemory::enter_step(std::uint64_t step) {
     }
 }
 
-bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step, std::vector<RowState>& states) {
+bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step, std::vector<RowState>& states,
+                            Slots* slots) {
     enter_step(step);
     states.assign(keys.size(), RowState::Free);
+    if (slots != nullptr) {
+        slots->joints_.clear();
+        slots->steps_ = steps_;
+    }
     bool any = false;
     for (std::size_t begin = 0, end; begin < keys.size(); begin = end) {
         end = joint_end(keys, begin);
-        const auto it = joints_.find(JointKey(keys[begin]));
-        if (it == joints_.end()) continue;
-        const std::vector<Row>& rows = it->second.rows;
+        const Entry* entry = nullptr;
+        if (slots != nullptr) {
+            Entry& made = joints_[JointKey(keys[begin])];  // empty until remember stores into it
+            slots->joints_.push_back({end, &made});
+            entry = &made;
+        } else {
+            const auto it = joints_.find(JointKey(keys[begin]));
+            if (it == joints_.end()) continue;
+            entry = &it->second;
+        }
+        const std::vector<Row>& rows = entry->rows;
         for (std::size_t i = begin; i < end; ++i) {
             const auto r = static_cast<std::size_t>(keys[i].row);
             if (r >= rows.size() || !is_kept(rows[r])) continue;
@@ -88,18 +101,33 @@ bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step,
     return any;
 }
 
-void RowStateMemory::remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states) {
+void RowStateMemory::store(Entry& entry, const std::vector<RowKey>& keys, std::size_t begin, std::size_t end,
+                           const std::vector<RowState>& states) {
+    entry.seen = steps_;
+    for (std::size_t i = begin; i < end; ++i) {
+        const auto r = static_cast<std::size_t>(keys[i].row);
+        if (r >= entry.rows.size()) entry.rows.resize(r + 1);
+        entry.rows[r] = Row{states[i], steps_};
+    }
+}
+
+void RowStateMemory::remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states,
+                              const Slots* slots) {
     if (keys.size() != states.size()) return;
     enter_step(step);
+    const bool filled = slots != nullptr && slots->steps_ == steps_ && !slots->joints_.empty() &&
+                        slots->joints_.back().end == keys.size();
+    if (filled) {
+        std::size_t begin = 0;
+        for (const Slots::Joint& joint : slots->joints_) {
+            store(*joint.entry, keys, begin, joint.end, states);
+            begin = joint.end;
+        }
+        return;
+    }
     for (std::size_t begin = 0, end; begin < keys.size(); begin = end) {
         end = joint_end(keys, begin);
-        Entry& entry = joints_[JointKey(keys[begin])];
-        entry.seen = steps_;
-        for (std::size_t i = begin; i < end; ++i) {
-            const auto r = static_cast<std::size_t>(keys[i].row);
-            if (r >= entry.rows.size()) entry.rows.resize(r + 1);
-            entry.rows[r] = Row{states[i], steps_};
-        }
+        store(joints_[JointKey(keys[begin])], keys, begin, end, states);
     }
 }
 

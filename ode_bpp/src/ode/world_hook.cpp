@@ -99,6 +99,7 @@ const char* fallback_name(const Result& r) {
 struct IslandScratch {
     std::vector<RowKey> keys;
     std::vector<ContactSlot> contacts;
+    RowStateMemory::Slots slots;  ///< where recall found the island's joints, for remember
     OrderingCache::Signature structure;
     ode::IslandView view;
     Start start;
@@ -124,7 +125,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     Start& start = scratch.start;
     start.ordering.clear();
     Options options;
-    bool warm = false, small = false;
+    bool warm = false, small = false, recalled = false;
     {
         std::lock_guard<std::mutex> g(hook().lock);
         WorldState& ws = hook().worlds[problem->world];
@@ -132,7 +133,10 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
         options.method = method;
         // a small island's solve takes no ordering (pivoting/small_island.h): no signature, no lookup
         small = pivoting::is_small_island(problem->m, options);
-        if (ws.settings.warm_start && use_memory) warm = ws.memory.recall(keys, problem->step, start.states);
+        if (ws.settings.warm_start && use_memory) {
+            warm = ws.memory.recall(keys, problem->step, start.states, &scratch.slots);
+            recalled = true;
+        }
         if (known_rows && !small) {
             OrderingCache::signature(*problem, keys.front(), structure);
             if (const std::vector<int>* known = ws.orderings.find(structure)) start.ordering = *known;
@@ -153,7 +157,8 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     std::lock_guard<std::mutex> g(hook().lock);
     HookState& h = hook();
     WorldState& ws = h.worlds[problem->world];
-    if (use_memory && status != dMLCPFailed) ws.memory.remember(keys, problem->step, r.states);
+    if (use_memory && status != dMLCPFailed)
+        ws.memory.remember(keys, problem->step, r.states, recalled ? &scratch.slots : nullptr);
     if (known_rows && !small && !r.ordering.empty() && r.ordering != start.ordering)
         ws.orderings.store(structure, r.ordering);
     ws.last = std::move(r);  // last use of r: no copy of its vectors per island

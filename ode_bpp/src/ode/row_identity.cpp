@@ -29,10 +29,14 @@ std::size_t JointKeyHash::operator()(const JointKey& k) const {
 namespace {
 
 /// Numbers each contact among the island's contacts of the same geom pair, in joint order:
-/// sorted by pair, stably (joint order holds within a pair), then counted. O(c log c).
+/// sorted by pair, then by joint (the order of a stable sort by pair, without the buffer that
+/// std::stable_sort allocates at every call), then counted. O(c log c).
 void number_contacts(std::vector<ContactSlot>& contacts) {
-    std::stable_sort(contacts.begin(), contacts.end(), [](const ContactSlot& x, const ContactSlot& y) {
-        return std::less<const void*>()(x.g1, y.g1) || (x.g1 == y.g1 && std::less<const void*>()(x.g2, y.g2));
+    std::sort(contacts.begin(), contacts.end(), [](const ContactSlot& x, const ContactSlot& y) {
+        const std::less<const void*> less;
+        if (x.g1 != y.g1) return less(x.g1, y.g1);
+        if (x.g2 != y.g2) return less(x.g2, y.g2);
+        return x.joint < y.joint;
     });
     for (std::size_t k = 0; k < contacts.size(); ++k) {
         const bool same_pair = k > 0 && contacts[k].g1 == contacts[k - 1].g1 && contacts[k].g2 == contacts[k - 1].g2;

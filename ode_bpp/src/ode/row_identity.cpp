@@ -1,6 +1,7 @@
 #include "ode/row_identity.h"
 
 #include <algorithm>
+#include <atomic>
 #include <functional>
 
 namespace ode_bpp {
@@ -63,6 +64,22 @@ void row_keys(const dMLCP& problem, std::vector<RowKey>& keys, std::vector<Conta
     }
 }
 
+std::uint64_t RowStateMemory::fresh_id() {
+    static std::atomic<std::uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+RowStateMemory::RowStateMemory(const RowStateMemory& other)
+    : joints_(other.joints_), last_world_step_(other.last_world_step_), steps_(other.steps_) {}
+
+RowStateMemory& RowStateMemory::operator=(const RowStateMemory& other) {
+    joints_ = other.joints_;
+    last_world_step_ = other.last_world_step_;
+    steps_ = other.steps_;
+    id_ = fresh_id();
+    return *this;
+}
+
 void RowStateMemory::enter_step(std::uint64_t step) {
     if (steps_ > 0 && step == last_world_step_) return;
     last_world_step_ = step;
@@ -79,6 +96,7 @@ bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step,
     states.assign(keys.size(), RowState::Free);
     if (slots != nullptr) {
         slots->joints_.clear();
+        slots->memory_ = id_;
         slots->steps_ = steps_;
     }
     bool any = false;
@@ -119,8 +137,8 @@ void RowStateMemory::remember(const std::vector<RowKey>& keys, std::uint64_t ste
                               const Slots* slots) {
     if (keys.size() != states.size()) return;
     enter_step(step);
-    const bool filled = slots != nullptr && slots->steps_ == steps_ && !slots->joints_.empty() &&
-                        slots->joints_.back().end == keys.size();
+    const bool filled = slots != nullptr && slots->memory_ == id_ && slots->steps_ == steps_ &&
+                        !slots->joints_.empty() && slots->joints_.back().end == keys.size();
     if (filled) {
         std::size_t begin = 0;
         for (const Slots::Joint& joint : slots->joints_) {

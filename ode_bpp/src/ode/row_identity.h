@@ -80,8 +80,15 @@ public:
             Entry* entry;     ///< stable: entries are erased only when a later step begins
         };
         std::vector<Joint> joints_;
-        std::uint64_t steps_ = 0;  ///< RowStateMemory::steps_ when filled
+        std::uint64_t memory_ = 0;  ///< RowStateMemory::id_ of the memory that filled it
+        std::uint64_t steps_ = 0;   ///< its steps_ then
     };
+
+    RowStateMemory() = default;
+    /// A copy (or an assignment) holds other entries, so it takes a new identity: slots filled
+    /// by the original never serve it.
+    RowStateMemory(const RowStateMemory& other);
+    RowStateMemory& operator=(const RowStateMemory& other);
 
     /// step: the world step of the island. states: output, one per key; rows never seen start
     /// Free. Returns true if any row was known. slots: null, or filled for remember.
@@ -114,6 +121,10 @@ private:
     std::unordered_map<JointKey, Entry, JointKeyHash> joints_;
     std::uint64_t last_world_step_ = 0;
     std::uint64_t steps_ = 0;  ///< distinct world steps seen so far
+    /// Unique in the process, so that slots of a memory since destroyed (a world forgotten while
+    /// one of its islands was being solved) are never taken for this one's.
+    std::uint64_t id_ = fresh_id();
+    static std::uint64_t fresh_id();
 };
 
 }  // namespace ode_bpp

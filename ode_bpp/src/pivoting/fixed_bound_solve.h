@@ -2,8 +2,9 @@
 // Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
 // decides: the plain attempt from the warm start; where that does not converge within
 // Tuning::rescue_after steps, single pivots on an incremental factor (single_pivots.h),
-// then the rescue continuation, then the plain loop again where the rescue gives up; and all of
-// it again one rung up the breakdown ladder after a Cholesky breakdown.
+// then the active-set method (active_set.h, which terminates finitely), then the rescue
+// continuation, then the plain loop again where the rescue gives up; and all of it again one
+// rung up the breakdown ladder after a Cholesky breakdown.
 //
 // Index space: the permuted space of the BoxedLcp and its FreeSolver.
 #pragma once
@@ -12,7 +13,9 @@
 #include <vector>
 
 #include "ode_bpp/solver.h"
+#include "pivoting/active_set.h"
 #include "pivoting/boxed_lcp.h"
+#include "pivoting/free_rows_factor.h"
 #include "pivoting/free_solver.h"
 #include "pivoting/pivot_loop.h"
 #include "pivoting/regularization.h"
@@ -31,7 +34,9 @@ enum class FixedOutcome {
 /// capacity outlives one solve.
 struct FixedBoundBuffers {
     LoopWorkspace loop;
+    FreeRowsFactor free_rows;  ///< the single pivots' and the active set's dense factor
     SinglePivotsWorkspace single_pivots;
+    ActiveSetWorkspace active_set;
 };
 
 class FixedBoundSolver {
@@ -52,6 +57,10 @@ public:
 private:
     LoopOutcome at_target(std::vector<RowState>& states, std::vector<double>& x, int budget);
     LoopOutcome by_single_pivots(std::vector<RowState>& states, std::vector<double>& x);
+    LoopOutcome by_active_set(std::vector<RowState>& states, std::vector<double>& x);
+    /// The plain loop from a stage's converged answer: certifies it with the factor strategy's
+    /// own solve and polishes it (usually one step).
+    LoopOutcome certify(std::vector<RowState>& states, std::vector<double>& x);
     LoopOutcome rescue(std::vector<RowState>& states, std::vector<double>& x, int budget);
     void run_continuation(std::vector<RowState>& states, std::vector<double>& x, int budget);
     /// Factors A + shift I unless the solver already holds that factor; false on breakdown.
@@ -67,7 +76,7 @@ private:
     std::optional<double> prepared_;       ///< the shift the solver holds a factor of
     bool continuation_done_ = false;       ///< the up-front continuation runs before the first solve only
     std::vector<RowState> start_, entry_states_;  ///< warm start of a solve; states entering a rescue
-    std::vector<double> entry_x_;
+    std::vector<double> entry_x_, loop_x_;  ///< x entering a rescue; the plain attempt's best iterate
 };
 
 }  // namespace ode_bpp::pivoting

@@ -36,7 +36,11 @@ constexpr int kSinglePivotsExtra = 50;
 /// Single pivots without a new least count of infeasible rows after which they give up and the
 /// rescue takes over (docs/tuning.md): a bound on what a hopeless island costs.
 constexpr int kSinglePivotPatience = 150;
-/// Largest island (rows) whose free set is factored densely for single pivots (8 n² bytes).
+/// Steps of the active-set method (active_set.h) per row of the island, plus kSinglePivotsExtra:
+/// it terminates finitely anyway; this bounds what one island may cost.
+constexpr int kActiveSetStepsPerRow = 10;
+/// Largest island (rows) whose free set is factored densely for single pivots and the active
+/// set (8 n² bytes).
 constexpr int kSinglePivotMaxRows = 1500;
 
 // ---- friction (friction_policy.h) --------------------------------------------------------------

@@ -6,6 +6,7 @@
 #include "pivoting/iterate.h"
 #include "pivoting/kept_buffers_impl.h"
 #include "pivoting/murty_rule.h"
+#include "pivoting/tuning.h"
 
 namespace ode_bpp::pivoting {
 
@@ -141,6 +142,10 @@ private:
 };
 
 }  // namespace
+
+bool active_set_applies(const BoxedLcp& lcp) {
+    return !lcp.has_moving_bounds() && lcp.n() <= tuning::kActiveSetMaxRows;
+}
 
 LoopOutcome active_set(const BoxedLcp& lcp, const PivotSettings& settings, std::vector<RowState>& states,
                        std::vector<double>& x, PivotCounters& counters, ActiveSetWorkspace& workspace,

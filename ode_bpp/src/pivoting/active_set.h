@@ -1,5 +1,5 @@
 // A primal-feasible active-set method for the fixed-bound problem: the stage of a fixed-bound
-// solve that terminates finitely, where block pivots and single pivots run out of budget.
+// solve that terminates finitely, where block pivots run out of steps.
 //
 // The maths. With A + shift I SPD (ODE's CFM > 0, or a shift of the breakdown ladder), the boxed
 // LCP of boxed_lcp.h is exactly the KKT system of the strictly convex box QP
@@ -38,6 +38,10 @@
 #include "pivoting/pivot_loop.h"
 
 namespace ode_bpp::pivoting {
+
+/// True when active_set can take this problem on: fixed bounds only (no moving friction bounds),
+/// and small enough for a dense factor (tuning::kActiveSetMaxRows).
+bool active_set_applies(const BoxedLcp& lcp);
 
 /// The buffers of active_set (active_set.cpp), kept by the caller so that their capacity
 /// outlives one run. One run per workspace at a time.

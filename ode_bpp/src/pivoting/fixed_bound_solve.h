@@ -1,10 +1,10 @@
 // One fixed-bound solve of a BPP method: the boxed LCP with its bounds as they stand (paper
 // Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
 // decides: the plain attempt from the warm start; where that does not converge within
-// Tuning::rescue_after steps, single pivots on an incremental factor (single_pivots.h),
-// then the active-set method (active_set.h, which terminates finitely), then the rescue
-// continuation, then the plain loop again where the rescue gives up; and all of it again one
-// rung up the breakdown ladder after a Cholesky breakdown.
+// Tuning::rescue_after steps, the active-set method on an incremental dense factor
+// (active_set.h, which terminates finitely), then the rescue continuation, then the plain loop
+// again where the rescue gives up; and all of it again one rung up the breakdown ladder after a
+// Cholesky breakdown.
 //
 // Index space: the permuted space of the BoxedLcp and its FreeSolver.
 #pragma once
@@ -19,7 +19,6 @@
 #include "pivoting/free_solver.h"
 #include "pivoting/pivot_loop.h"
 #include "pivoting/regularization.h"
-#include "pivoting/single_pivots.h"
 
 namespace ode_bpp::pivoting {
 
@@ -34,8 +33,7 @@ enum class FixedOutcome {
 /// capacity outlives one solve.
 struct FixedBoundBuffers {
     LoopWorkspace loop;
-    FreeRowsFactor free_rows;  ///< the single pivots' and the active set's dense factor
-    SinglePivotsWorkspace single_pivots;
+    FreeRowsFactor free_rows;  ///< the active set's dense factor
     ActiveSetWorkspace active_set;
 };
 
@@ -56,11 +54,7 @@ public:
 
 private:
     LoopOutcome at_target(std::vector<RowState>& states, std::vector<double>& x, int budget);
-    LoopOutcome by_single_pivots(std::vector<RowState>& states, std::vector<double>& x);
     LoopOutcome by_active_set(std::vector<RowState>& states, std::vector<double>& x);
-    /// The plain loop from a stage's converged answer: certifies it with the factor strategy's
-    /// own solve and polishes it (usually one step).
-    LoopOutcome certify(std::vector<RowState>& states, std::vector<double>& x);
     LoopOutcome rescue(std::vector<RowState>& states, std::vector<double>& x, int budget);
     void run_continuation(std::vector<RowState>& states, std::vector<double>& x, int budget);
     /// Factors A + shift I unless the solver already holds that factor; false on breakdown.
@@ -76,7 +70,7 @@ private:
     std::optional<double> prepared_;       ///< the shift the solver holds a factor of
     bool continuation_done_ = false;       ///< the up-front continuation runs before the first solve only
     std::vector<RowState> start_, entry_states_;  ///< warm start of a solve; states entering a rescue
-    std::vector<double> entry_x_, loop_x_;  ///< x entering a rescue; the plain attempt's best iterate
+    std::vector<double> entry_x_;
 };
 
 }  // namespace ode_bpp::pivoting

@@ -1,7 +1,7 @@
 // A dense Cholesky factor of (A + shift I)_FF for a free set F that changes by one row at a time
-// (linalg/incremental_cholesky.h), and Eq. 6 solved with it: the factor behind the single
-// pivots (single_pivots.h) and the active-set stage (active_set.h), where each step moves one
-// row between F and T, O(|F|²) instead of a deletion from L0 or a refactorization per step.
+// (linalg/incremental_cholesky.h), and Eq. 6 solved with it: the factor behind the active-set
+// stage (active_set.h), where each step moves one row between F and T, O(|F|²) instead of a
+// deletion from L0 or a refactorization per step.
 //
 // Index space: the permuted space of the BoxedLcp.
 #pragma once

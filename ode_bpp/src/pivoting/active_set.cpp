@@ -34,7 +34,8 @@ public:
         ws_.entry_states = states;
         ws_.entry_x = x;
         project(states, x);
-        if (!factor_.reset(lcp_, states)) return give_up(states, x, LoopOutcome::Breakdown);
+        if (!factor_.reset(lcp_, states, x)) return give_up(states, x, LoopOutcome::Breakdown);
+        bool fresh = true;  // the factor has not been updated since it was built
         for (int step = 0; step < settings_.max_pivots; ++step) {
             ++counters_.pivots;
             ++counters_.murty_pivots;
@@ -42,12 +43,20 @@ public:
             if (settings_.record_steps)
                 counters_.tight_per_step.push_back(n_ - static_cast<int>(factor_.members().size()));
             ws_.target = x;
-            if (!factor_.solve(ws_.target, ws_.it, settings_.tolerance, counters_))
-                return give_up(states, x, LoopOutcome::Breakdown);
+            factor_.solve(ws_.target);
             const double alpha = step_length(x);
             if (alpha < 1) {
                 move(alpha, states, x);
+                fresh = false;
                 continue;
+            }
+            // w at x*: for Eq. 4 below, and to check the updated factor where it decides
+            refresh_residual(lcp_, ws_.target, ws_.it);
+            if (!fresh && !factor_.accurate(ws_.it, settings_.tolerance)) {
+                ++counters_.accuracy_refactors;
+                if (!factor_.refresh()) return give_up(states, x, LoopOutcome::Breakdown);
+                fresh = true;
+                continue;  // this step again on the fresh factor
             }
             x.swap(ws_.target);
             tighten_rows_on_bounds(states, x);
@@ -56,6 +65,7 @@ public:
             const int row = ws_.inf.rows[most_violated(ws_.inf)];  // a tight row: free rows are feasible
             if (!factor_.add(row)) return give_up(states, x, LoopOutcome::Breakdown);
             states[row] = RowState::Free;
+            fresh = false;
         }
         return give_up(states, x, LoopOutcome::MaxIterations);
     }
@@ -122,9 +132,9 @@ private:
     }
 
     void tighten(int row, RowState to, std::vector<RowState>& states, std::vector<double>& x) {
-        factor_.remove(row);
         states[row] = to;
         x[row] = tight_value(lcp_, row, to);
+        factor_.remove(row, x[row]);
     }
 
     LoopOutcome give_up(std::vector<RowState>& states, std::vector<double>& x, LoopOutcome outcome) const {

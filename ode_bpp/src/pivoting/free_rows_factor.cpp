@@ -5,15 +5,30 @@
 
 namespace ode_bpp::pivoting {
 
-bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& states) {
+bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x) {
     lcp_ = &lcp;
     const int n = lcp.n();
-    factor_.reset(n);
+    tight_x_.assign(static_cast<std::size_t>(n), 0.0);
+    for (int i = 0; i < n; ++i)
+        if (states[i] != RowState::Free) tight_x_[i] = x[i];
     members_.clear();
+    for (int i = 0; i < n; ++i)
+        if (states[i] == RowState::Free) members_.push_back(i);
+    return refresh();
+}
+
+bool FreeRowsFactor::refresh() {
+    const int n = lcp_->n();
+    refresh_rows_.swap(members_);  // F, rebuilt below in increasing index
+    std::sort(refresh_rows_.begin(), refresh_rows_.end());
+    members_.clear();
+    factor_.reset(n);
     position_.assign(static_cast<std::size_t>(n), -1);
     column_.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i)
-        if (states[i] == RowState::Free && !add(i)) return false;
+    lcp_->A->multiply(tight_x_, 0, tight_product_);
+    for (int i = 0; i < n; ++i) tight_product_[i] -= lcp_->A->diag(i) * tight_x_[i];
+    for (int i : refresh_rows_)
+        if (!add(i)) return false;
     return true;
 }
 
@@ -28,54 +43,39 @@ bool FreeRowsFactor::add(int i) {
     if (!factor_.append(column_.data(), A.diag(i) + lcp_->shift)) return false;
     position_[i] = m;
     members_.push_back(i);
+    if (tight_x_[i] != 0) add_column(i, -tight_x_[i]);
+    tight_x_[i] = 0;
     return true;
 }
 
-void FreeRowsFactor::remove(int i) {
+void FreeRowsFactor::remove(int i, double value) {
     const int p = position_[i];
     factor_.remove(p);
     members_.erase(members_.begin() + p);
     position_[i] = -1;
     for (int k = p; k < static_cast<int>(members_.size()); ++k) position_[members_[k]] = k;
+    tight_x_[i] = value;
+    if (value != 0) add_column(i, value);
 }
 
-bool FreeRowsFactor::solve(std::vector<double>& x, Iterate& it, double tolerance, PivotStats& counters) {
-    solve_free_rows(x, it);
-    if (free_residual(it) <= accuracy_limit(tolerance, lcp_->n())) return true;
-    ++counters.accuracy_refactors;
-    if (!refactor()) return false;
-    solve_free_rows(x, it);
-    return true;
+void FreeRowsFactor::add_column(int i, double factor) {
+    const linalg::SymmetricRows& A = *lcp_->A;
+    for (int k = A.row_begin(i); k < A.row_end(i); ++k) tight_product_[A.col(k)] += factor * A.val(k);
 }
 
-void FreeRowsFactor::solve_free_rows(std::vector<double>& x, Iterate& it) {
-    x_tight_ = x;
-    for (int i : members_) x_tight_[i] = 0;
-    lcp_->A->multiply(x_tight_, lcp_->shift, Ax_);  // A_FT x_T on the free rows
+void FreeRowsFactor::solve(std::vector<double>& x) const {
     const int m = factor_.size();
     rhs_.resize(static_cast<std::size_t>(m));
-    for (int p = 0; p < m; ++p) rhs_[p] = lcp_->b[members_[p]] - Ax_[members_[p]];
+    for (int p = 0; p < m; ++p) rhs_[p] = lcp_->b[members_[p]] - tight_product_[members_[p]];
     factor_.solve(rhs_.data());
     for (int p = 0; p < m; ++p) x[members_[p]] = rhs_[p];
-    refresh_residual(*lcp_, x, it);
 }
 
-bool FreeRowsFactor::refactor() {
-    std::vector<int> rows = members_;  // rare: only where updates have lost accuracy
-    std::sort(rows.begin(), rows.end());
-    factor_.reset(lcp_->n());
-    members_.clear();
-    std::fill(position_.begin(), position_.end(), -1);
-    for (int i : rows)
-        if (!add(i)) return false;
-    return true;
-}
-
-double FreeRowsFactor::free_residual(const Iterate& it) const {
+bool FreeRowsFactor::accurate(const Iterate& it, double tolerance) const {
     double worst = 0;
     for (int i : members_)
         if (it.w[i] != 0) worst = std::max(worst, std::abs(it.w[i]) / it.scale[i]);
-    return worst;
+    return worst <= accuracy_limit(tolerance, lcp_->n());
 }
 
 }  // namespace ode_bpp::pivoting

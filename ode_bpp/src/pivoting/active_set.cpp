@@ -1,6 +1,8 @@
 #include "pivoting/active_set.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 #include "pivoting/classify_row.h"
 #include "pivoting/iterate.h"
@@ -16,6 +18,7 @@ struct ActiveSetBuffers {
     std::vector<double> target;          ///< the face's minimizer x*
     Iterate it;
     Infeasibility inf;
+    std::vector<std::pair<int, RowState>> reached;  ///< free rows a step took onto a bound
 };
 template class KeptBuffers<ActiveSetBuffers>;
 
@@ -106,13 +109,13 @@ private:
     /// Free rows at or beyond a bound go to T at that bound (rounding in the step may leave the
     /// blocking row a hair inside: tighten_nearest catches that).
     void tighten_rows_on_bounds(std::vector<RowState>& states, std::vector<double>& x) {
-        ws_.inf.clear();
+        ws_.reached.clear();
         for (int i : factor_.members()) {
             if (lcp_.always_free[i]) continue;
-            if (x[i] <= lcp_.lo[i]) ws_.inf.rows.push_back(i), ws_.inf.flip_to.push_back(RowState::AtLo);
-            else if (x[i] >= lcp_.hi[i]) ws_.inf.rows.push_back(i), ws_.inf.flip_to.push_back(RowState::AtHi);
+            if (x[i] <= lcp_.lo[i]) ws_.reached.emplace_back(i, RowState::AtLo);
+            else if (x[i] >= lcp_.hi[i]) ws_.reached.emplace_back(i, RowState::AtHi);
         }
-        for (int k = 0; k < ws_.inf.count(); ++k) tighten(ws_.inf.rows[k], ws_.inf.flip_to[k], states, x);
+        for (const auto& [row, to] : ws_.reached) tighten(row, to, states, x);
     }
 
     /// The free row closest to a bound in the direction it moves joins T: the blocking row.
@@ -123,7 +126,7 @@ private:
         for (int i : factor_.members()) {
             const double p = ws_.target[i] - x[i];
             const double gap = p < 0 ? (x[i] - lcp_.lo[i]) / -p : p > 0 ? (lcp_.hi[i] - x[i]) / p : -1;
-            if (gap < 0 || (row >= 0 && gap >= least)) continue;
+            if (gap < 0 || !std::isfinite(gap) || (row >= 0 && gap >= least)) continue;
             row = i;
             least = gap;
             to = p < 0 ? RowState::AtLo : RowState::AtHi;

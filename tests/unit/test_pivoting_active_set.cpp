@@ -34,7 +34,7 @@ Result solve_captured(const std::string& name, bool active_set) {
     EXPECT_TRUE(read.ok) << read.error;
     Options o;  // Bpp, Frozen friction, a budget of 100
     o.dantzig_fallback = false;
-    o.tuning.single_pivots = active_set;
+    o.tuning.active_set = active_set;
     std::vector<double> x(static_cast<std::size_t>(read.file.n));
     return solve(read.file.view(), o, x.data());
 }

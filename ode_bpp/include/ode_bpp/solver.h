@@ -130,11 +130,11 @@ struct Tuning {
     /// delta falling adaptively from 1e-4 max_i A_ii to the problem's own, pivoting/regularization.h),
     /// with the rest of the budget; if that gives up, the plain attempt resumes. 0: no rescue.
     int rescue_after = 8;
-    /// Where that plain attempt does not converge, first single pivots from its least
-    /// infeasible iterate: an active-set method that terminates finitely, each step adding or
-    /// removing one row of a dense factor of A_FF (pivoting/active_set.h), before the
-    /// regularization continuation. Needs rescue_after > 0.
-    bool single_pivots = true;
+    /// Where that plain attempt does not converge, an active-set method on the box QP from its
+    /// least infeasible iterate: it terminates finitely, each step adding or removing one row of
+    /// a dense factor of A_FF (pivoting/active_set.h), before the regularization continuation.
+    /// Islands up to 1,500 rows. Needs rescue_after > 0.
+    bool active_set = true;
     /// Consistent friction: most outer bound updates, damped (new = (1-d)*old + d*target).
     int max_friction_rounds = 100;
     double friction_damping = 0.6;
@@ -230,7 +230,7 @@ struct PivotStats {
     int downdate_steps = 0;      ///< steps whose L_FF came from copying L and deleting rows
     int refactor_steps = 0;      ///< steps whose L_FF came from a (partial) refactorization
     /// steps whose L_FF came from the active set's incremental factor (one row added or removed;
-    /// Tuning::single_pivots); pivots = downdate_steps + refactor_steps + update_steps
+    /// Tuning::active_set); pivots = downdate_steps + refactor_steps + update_steps
     int update_steps = 0;
     int accuracy_refactors = 0;  ///< deleted factors rejected by the free-residual check and refactored
     int rescues = 0;             ///< fixed-bound solves the rescue continuation finished (Tuning::rescue_after)

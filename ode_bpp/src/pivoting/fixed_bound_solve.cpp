@@ -38,7 +38,7 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
     LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, options_.tuning.rescue_after) : budget),
                                              states, x, counters_, buffers_.loop);
     if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
-    if (options_.tuning.single_pivots && active_set_applies(lcp_)) {
+    if (options_.tuning.active_set && active_set_applies(lcp_)) {
         const int before = counters_.pivots;
         outcome = by_active_set(states, x);
         if (outcome == LoopOutcome::Converged) return outcome;

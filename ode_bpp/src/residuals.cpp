@@ -98,14 +98,14 @@ struct DenseDiagonal {
 };
 
 /// w = A x - b and scale = |A||x| + |b| from the dense form's lower triangle, each entry used for
-/// both of its rows. O(n^2), no allocation beyond w and scale.
+/// both of its rows, each row summed as the compressed rows' residual_vectors sums it (diagonal,
+/// off-diagonal terms by increasing column, then b). O(n^2), no allocation beyond w and scale.
 void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
     w.resize(static_cast<std::size_t>(p.n));
     scale.resize(static_cast<std::size_t>(p.n));
     for (int i = 0; i < p.n; ++i) {
-        const double d = DenseDiagonal{p}(i) * x[i];
-        w[i] = d - p.b[i];
-        scale[i] = std::abs(d) + std::abs(p.b[i]);
+        w[i] = DenseDiagonal{p}(i) * x[i];
+        scale[i] = std::abs(w[i]);
     }
     for (int i = 1; i < p.n; ++i) {
         const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
@@ -116,6 +116,10 @@ void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double
             w[j] += to_j;
             scale[j] += std::abs(to_j);
         }
+    }
+    for (int i = 0; i < p.n; ++i) {
+        w[i] -= p.b[i];
+        scale[i] += std::abs(p.b[i]);
     }
 }
 
@@ -129,16 +133,16 @@ void residual_vectors(const Problem& p, const linalg::SymmetricRows& A, ConstStr
                       std::vector<double>& scale) {
     w.assign(static_cast<std::size_t>(p.n), 0.0);
     scale.assign(static_cast<std::size_t>(p.n), 0.0);
-    for (int i = 0; i < p.n; ++i) {
-        double wi = A.diag(i) * x[i] - p.b[i];
-        double si = std::abs(A.diag(i) * x[i]) + std::abs(p.b[i]);
+    for (int i = 0; i < p.n; ++i) {  // (A x)_i - b_i, summed as the pivoting loop sums its w
+        double wi = A.diag(i) * x[i];
+        double si = std::abs(wi);
         for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
             const double term = A.val(k) * x[A.col(k)];
             wi += term;
             si += std::abs(term);
         }
-        w[i] = wi;
-        scale[i] = si;
+        w[i] = wi - p.b[i];
+        scale[i] = si + std::abs(p.b[i]);
     }
 }
 
@@ -157,7 +161,12 @@ Residuals compute_residuals(const Problem& p, ConstStrided x, const std::vector<
 Residuals compute_residuals(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x,
                             const std::vector<RowState>* states, ResidualBuffers& buffers) {
     residual_vectors(p, A, x, buffers.w, buffers.scale);
-    return summarize(p, [&A](int i) { return A.diag(i); }, x, buffers.w, buffers.scale, states);
+    return residuals_from(p, A, x, states, buffers);
+}
+
+Residuals residuals_from(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x,
+                         const std::vector<RowState>* states, const ResidualBuffers& vectors) {
+    return summarize(p, [&A](int i) { return A.diag(i); }, x, vectors.w, vectors.scale, states);
 }
 
 Residuals dense_residuals_from(const Problem& p, ConstStrided x, const std::vector<double>& w,

@@ -20,13 +20,21 @@ struct ResidualBuffers {
 Residuals compute_residuals(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x,
                             const std::vector<RowState>* states, ResidualBuffers& buffers);
 
+/// As compute_residuals(problem, A, x, states, buffers) when vectors already hold w and scale of
+/// x as residual_vectors sums them (a pivoting loop's at its answer, bpp_driver.h): the same
+/// values, without the pass over A. O(n).
+Residuals residuals_from(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x,
+                         const std::vector<RowState>* states, const ResidualBuffers& vectors);
+
 /// The residuals of x on a problem in the dense form (Problem::A) from its w = A x - b and row
 /// scales as residual_vectors computes them (e.g. kept by a pivoting loop at its answer): the
 /// same values as compute_residuals(problem, x, states), without its O(n^2) pass.
 Residuals dense_residuals_from(const Problem& problem, ConstStrided x, const std::vector<double>& w,
                                const std::vector<double>& scale, const std::vector<RowState>* states);
 
-/// As residual_vectors(problem, x, w, scale), from A = linalg::SymmetricRows(problem, {}).
+/// As residual_vectors(problem, x, w, scale), from A = linalg::SymmetricRows(problem, {}); each
+/// row summed as SymmetricRows::multiply_with_scale sums it, then b: the pivoting loop's w and
+/// scales (pivoting/iterate.h) at the same x, bit for bit, in any symmetric permutation of A.
 void residual_vectors(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x, std::vector<double>& w,
                       std::vector<double>& scale);
 

@@ -133,16 +133,17 @@ void residual_vectors(const Problem& p, const linalg::SymmetricRows& A, ConstStr
                       std::vector<double>& scale) {
     w.assign(static_cast<std::size_t>(p.n), 0.0);
     scale.assign(static_cast<std::size_t>(p.n), 0.0);
-    for (int i = 0; i < p.n; ++i) {  // (A x)_i - b_i, summed as the pivoting loop sums its w
-        double wi = A.diag(i) * x[i];
+    for (int i = 0; i < p.n; ++i) {  // (A x)_r - b_r, summed as the pivoting loop sums its w
+        const int r = A.built_row(i);
+        double wi = A.diag(i) * x[r];
         double si = std::abs(wi);
         for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
-            const double term = A.val(k) * x[A.col(k)];
+            const double term = A.val(k) * x[A.built_row(A.col(k))];
             wi += term;
             si += std::abs(term);
         }
-        w[i] = wi - p.b[i];
-        scale[i] = si + std::abs(p.b[i]);
+        w[r] = wi - p.b[r];
+        scale[r] = si + std::abs(p.b[r]);
     }
 }
 
@@ -165,8 +166,12 @@ Residuals compute_residuals(const Problem& p, const linalg::SymmetricRows& A, Co
 }
 
 Residuals residuals_from(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x,
-                         const std::vector<RowState>* states, const ResidualBuffers& vectors) {
-    return summarize(p, [&A](int i) { return A.diag(i); }, x, vectors.w, vectors.scale, states);
+                         const std::vector<RowState>* states, ResidualBuffers& vectors) {
+    if (A.order().empty()) return summarize(p, [&A](int i) { return A.diag(i); }, x, vectors.w, vectors.scale, states);
+    vectors.diagonal.resize(static_cast<std::size_t>(p.n));
+    for (int i = 0; i < p.n; ++i) vectors.diagonal[A.built_row(i)] = A.diag(i);
+    const std::vector<double>& diagonal = vectors.diagonal;
+    return summarize(p, [&diagonal](int i) { return diagonal[i]; }, x, vectors.w, vectors.scale, states);
 }
 
 Residuals dense_residuals_from(const Problem& p, ConstStrided x, const std::vector<double>& w,

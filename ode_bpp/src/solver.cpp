@@ -119,23 +119,27 @@ Result run_pgs(const Problem& p, const linalg::SymmetricRows& A, const Options& 
 
 /// at_answer: out, w and the row scales at x when the method computed them at its answer
 /// (solve_bpp), else empty.
+/// A: the problem's, stored in any order (the BPP methods take it as it is, the others in the
+/// problem's order: scratch holds it then).
 Result dispatch(const Problem& p, const linalg::SymmetricRows& A, const Options& o, const Start& start,
-                std::vector<double>& x, pivoting::BppWorkspace& bpp, ResidualBuffers& at_answer) {
+                std::vector<double>& x, pivoting::BppWorkspace& bpp, ResidualBuffers& at_answer,
+                linalg::SymmetricRows& scratch) {
     at_answer.w.clear();
     if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, start, x, bpp, at_answer);
-    if (o.method == Method::Dantzig) return run_dantzig(p, A, x);
-    return run_pgs(p, A, o, x);
+    if (o.method == Method::Dantzig) return run_dantzig(p, A.in_built_order(scratch), x);
+    return run_pgs(p, A.in_built_order(scratch), o, x);
 }
 
-/// Steps 3-4 of the chain above; true when x was replaced.
+/// Steps 3-4 of the chain above; true when x was replaced. A: stored in any order (scratch holds
+/// it in the problem's for Dantzig).
 bool apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Options& o, Result& r,
-                     std::vector<double>& x) {
+                     std::vector<double>& x, linalg::SymmetricRows& scratch) {
     const bool failed = r.status == Status::NotSpd || !all_finite(x);
     if (!failed) return false;
     std::string reason = r.status == Status::NotSpd ? r.message : "the answer was not finite";
     if (o.dantzig_fallback && o.method != Method::Dantzig) {
         std::vector<double> xd;
-        const baselines::DantzigOutcome outcome = baselines::solve_dantzig(p, A, xd);
+        const baselines::DantzigOutcome outcome = baselines::solve_dantzig(p, A.in_built_order(scratch), xd);
         if (outcome == baselines::DantzigOutcome::Solved && all_finite(xd)) {
             x = std::move(xd);
             r.status = Status::FallbackUsed;
@@ -207,8 +211,9 @@ void fill_residuals(const Problem& p, const linalg::SymmetricRows& A, Result& r,
     else r.residuals = compute_residuals(p, A, ConstStrided{x.data(), 1}, states, buffers);
 }
 
-/// A as compressed rows in original order: the caller's sparse A as it is, or the dense lower
-/// triangle read once (the only O(n^2) pass of a dense problem) into rows (storage reused).
+/// A as compressed rows: the caller's sparse A as it is (in the order it is stored in, which may
+/// be the solver's: ode/island_view.h), or the dense lower triangle read once (the only O(n^2)
+/// pass of a dense problem) into rows (storage reused).
 const linalg::SymmetricRows& rows_of(const Problem& problem, linalg::SymmetricRows& rows) {
     if (problem.sparse != nullptr) return *problem.sparse;
     rows.assign(problem, {});
@@ -328,11 +333,11 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
     Result small_attempt;
     if (small && solve_small(problem, options, start, parts.small_island, answer, small_attempt, x)) return small_attempt;
     if (A == nullptr) A = &rows_of(problem, parts.rows);
-    Result r = dispatch(problem, *A, options, start, answer, parts.bpp, parts.residuals);
+    Result r = dispatch(problem, *A, options, start, answer, parts.bpp, parts.residuals, parts.rows);
     r.method = options.method;
     r.friction = options.friction;
     r.pivoting.pivots += small_attempt.pivoting.pivots;  // the steps of a small-island attempt that did not finish
-    const bool replaced = apply_fallbacks(problem, *A, options, r, answer);
+    const bool replaced = apply_fallbacks(problem, *A, options, r, answer, parts.rows);
     const bool vectors_at_answer = !replaced && parts.residuals.w.size() == answer.size();
     fill_residuals(problem, *A, r, answer, parts.residuals, vectors_at_answer);
     agree_with_residual(options, r);

@@ -132,7 +132,8 @@ bool has_sparse_form(const dMLCP& p) {
            p.m > 0;
 }
 
-void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers) {
+void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers,
+                   const std::vector<int>& order) {
     std::vector<linalg::LowerEntry>& lower = buffers.lower;
     lower.clear();
     std::vector<double>& diagonal = buffers.diagonal;
@@ -141,7 +142,8 @@ void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuff
         if (j == i) diagonal[i] = a;
         else if (a != 0) lower.push_back({i, j, a});  // exact zeros are not stored, as from the dense A
     });
-    out.assign_lower(diagonal, lower);
+    if (order.empty()) out.assign_lower(diagonal, lower);
+    else out.assign_lower(diagonal, lower, order);
 }
 
 void assemble_dense_lower(const dMLCP& island, double* A, int lda, AssemblyBuffers& buffers) {

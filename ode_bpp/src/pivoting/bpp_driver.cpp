@@ -35,6 +35,7 @@ bool is_identity(const std::vector<int>& perm) {
 struct PermutedProblem {
     std::vector<int> perm;
     linalg::SymmetricRows permuted_A;  ///< A in the solver's order, unless that is the caller's
+    linalg::SymmetricRows original_A;  ///< A in the problem's order, where the caller's is another
     const linalg::SymmetricRows* A = nullptr;
     BoxedLcp lcp;
     FrictionSet friction;
@@ -47,10 +48,17 @@ Method strategy_of(const Problem& p, const Options& o) {
 }
 
 /// The symmetric permutation to factor in: the given one where the strategy orders and it is
-/// valid (the hook passes the previous step's), else ordering/ordering_choice.h's.
-void order(const Problem& p, const linalg::SymmetricRows& A, const Options& o, const Start& start, Method strategy,
-           PermutedProblem& q) {
+/// valid (the hook passes the previous step's), else ordering/ordering_choice.h's. A stored in
+/// that permutation already (ode/island_view.h assembles it so) is taken as it is.
+void order(const Problem& p, const linalg::SymmetricRows& stored_A, const Options& o, const Start& start,
+           Method strategy, PermutedProblem& q) {
     const bool given = (strategy == Method::Bpp || strategy == Method::BppSky) && ordering::is_permutation(start.ordering, p.n);
+    if (given && !stored_A.order().empty() && stored_A.order() == start.ordering) {
+        q.perm = start.ordering;
+        q.A = &stored_A;
+        return;
+    }
+    const linalg::SymmetricRows& A = stored_A.in_built_order(q.original_A);
     static const std::vector<RowState> kNoHint;
     q.perm = given ? start.ordering
                    : ordering::choose_ordering(strategy, p, A, o.tuning.order_tight_last ? start.states : kNoHint);

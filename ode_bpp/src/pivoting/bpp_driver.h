@@ -21,7 +21,8 @@ using BppWorkspace = KeptBuffers<BppBuffers>;
 extern template class KeptBuffers<BppBuffers>;  // instantiated where BppBuffers is defined
 
 /// Solves a validated problem with options.method in {BppChol, BppDown, BppSky, Bpp}.
-/// A: linalg::SymmetricRows(problem, {}), the problem's matrix in original order.
+/// A: linalg::SymmetricRows(problem, {}) or problem.sparse, the problem's matrix, stored in any
+/// order (SymmetricRows::order; stored in the order the solver factors in, it is not copied).
 /// x: out, n entries, original space (zero when the status is NotSpd).
 /// Fills status, message, fallback ("regularized" or empty), the counters, tight, states
 /// (original space) and factor_error; leaves the residual fields to the caller.

@@ -58,6 +58,7 @@ TEST(SymmetricRows, OrderedAssemblyIsThePermutedMatrixEntryForEntry) {
         ordered.assign_lower(diagonal, lower, perm);
         EXPECT_EQ(ordered.order(), perm);
         expect_same_rows(ordered, A.permuted(perm));  // same entries in the same order in each row
+        EXPECT_EQ(ordered.row_profile(), A.permuted(perm).row_profile());  // found while counting
         SymmetricRows scratch;
         expect_same_rows(ordered.in_built_order(scratch), A);
         EXPECT_TRUE(ordered.in_built_order(scratch).order().empty());

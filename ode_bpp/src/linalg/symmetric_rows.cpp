@@ -58,6 +58,7 @@ void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
 void SymmetricRows::assign_lower(std::vector<double>& diagonal, const std::vector<LowerEntry>& lower) {
     n_ = static_cast<int>(diagonal.size());
     order_.clear();
+    profile_known_ = false;
     diag_.swap(diagonal);
     std::vector<int>&count = build_.count, &next = build_.next;
     count.assign(static_cast<std::size_t>(n_), 0);
@@ -90,10 +91,16 @@ void SymmetricRows::assign_lower(const std::vector<double>& diagonal, const std:
     diag_.resize(diagonal.size());
     count.assign(static_cast<std::size_t>(n_), 0);
     for (int i = 0; i < n_; ++i) diag_[i] = diagonal[order[i]];
+    profile_.resize(order.size());
+    std::iota(profile_.begin(), profile_.end(), 0);
     for (const LowerEntry& e : lower) {
-        ++count[to_new[e.row]];
-        ++count[to_new[e.col]];
+        const int r = to_new[e.row], c = to_new[e.col];
+        ++count[r];
+        ++count[c];
+        if (c < r) profile_[r] = std::min(profile_[r], c);
+        else profile_[c] = std::min(profile_[c], r);
     }
+    profile_known_ = true;
     rowptr_.assign(static_cast<std::size_t>(n_) + 1, 0);
     for (int i = 0; i < n_; ++i) rowptr_[i + 1] = rowptr_[i] + count[i];
     col_.resize(static_cast<std::size_t>(rowptr_[n_]));
@@ -138,6 +145,7 @@ void SymmetricRows::permute_into(const std::vector<int>& perm, SymmetricRows& ou
     to_new.resize(perm.size());
     for (std::size_t i = 0; i < perm.size(); ++i) to_new[perm[i]] = static_cast<int>(i);
     out.n_ = n_;
+    out.profile_known_ = false;
     out.order_.resize(perm.size());
     bool identity = true;
     for (std::size_t i = 0; i < perm.size(); ++i) {
@@ -205,6 +213,10 @@ std::vector<int> SymmetricRows::row_profile() const {
 }
 
 void SymmetricRows::row_profile(std::vector<int>& first) const {
+    if (profile_known_) {
+        first = profile_;
+        return;
+    }
     first.resize(static_cast<std::size_t>(n_));
     for (int i = 0; i < n_; ++i) {
         first[i] = i;

@@ -75,7 +75,8 @@ public:
     void multiply_with_scale(const double* x, double shift, double* y, double* scale) const;
     /// Row profile of the lower triangle, stored order: first[i] = min({i} U {j < i : Ap(i,j) != 0}).
     std::vector<int> row_profile() const;
-    /// The same into first (n entries, its storage reused).
+    /// The same into first (n entries, its storage reused). O(n) after the ordered assign_lower,
+    /// which finds it while it counts; O(n + nnz) otherwise.
     void row_profile(std::vector<int>& first) const;
     /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.
     std::vector<int> row_profile_under(const std::vector<int>& perm) const;
@@ -100,6 +101,8 @@ private:
 
     int n_ = 0;
     std::vector<int> order_;
+    std::vector<int> profile_;    ///< row_profile(), when profile_known_ (the ordered assign_lower finds it)
+    bool profile_known_ = false;
     std::vector<double> diag_;
     std::vector<int> rowptr_, col_;
     std::vector<double> val_;

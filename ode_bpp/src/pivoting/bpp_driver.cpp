@@ -52,12 +52,13 @@ Method strategy_of(const Problem& p, const Options& o) {
 /// that permutation already (ode/island_view.h assembles it so) is taken as it is.
 void order(const Problem& p, const linalg::SymmetricRows& stored_A, const Options& o, const Start& start,
            Method strategy, PermutedProblem& q) {
-    const bool given = (strategy == Method::Bpp || strategy == Method::BppSky) && ordering::is_permutation(start.ordering, p.n);
-    if (given && !stored_A.order().empty() && stored_A.order() == start.ordering) {
+    const bool orders = strategy == Method::Bpp || strategy == Method::BppSky;
+    if (orders && !stored_A.order().empty() && stored_A.order() == start.ordering) {  // a permutation
         q.perm = start.ordering;
         q.A = &stored_A;
         return;
     }
+    const bool given = orders && ordering::is_permutation(start.ordering, p.n);
     const linalg::SymmetricRows& A = stored_A.in_built_order(q.original_A);
     static const std::vector<RowState> kNoHint;
     q.perm = given ? start.ordering

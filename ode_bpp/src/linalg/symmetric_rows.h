@@ -59,8 +59,9 @@ public:
     int off_diagonal_entries() const { return rowptr_.empty() ? 0 : rowptr_[n_]; }
     double diag(int i) const { return diag_[i]; }
     double max_diag() const;
-    /// Off-diagonal entries of row i: positions rowptr(i) .. rowptr(i+1)-1 of col()/val(),
-    /// columns increasing.
+    /// Off-diagonal entries of row i: positions rowptr(i) .. rowptr(i+1)-1 of col()/val(). By
+    /// increasing column after assign and assign_lower; by increasing built column
+    /// (built_row(col(k))) after the ordered assign_lower; permute_into keeps each row's order.
     int row_begin(int i) const { return rowptr_[i]; }
     int row_end(int i) const { return rowptr_[i + 1]; }
     int col(int k) const { return col_[k]; }

@@ -55,7 +55,20 @@ ValidationResult check_diagonal(int i, double a_ii) {
     return {};
 }
 
+/// True only where check_dense_matrix passes: each row tested whole, without a branch per entry
+/// (0 * v is 0 for every finite v, NaN for an infinity or a NaN).
+bool dense_matrix_passes(const Problem& p) {
+    for (int i = 0; i < p.n; ++i) {
+        const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
+        double probe = 0;
+        for (int j = 0; j < i; ++j) probe += 0.0 * row[j];
+        if (!(probe == 0) || !good_diagonal(row[i])) return false;
+    }
+    return true;
+}
+
 ValidationResult check_dense_matrix(const Problem& p) {
+    if (dense_matrix_passes(p)) return {};
     for (int i = 0; i < p.n; ++i) {
         const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
         for (int j = 0; j < i; ++j)
@@ -110,9 +123,42 @@ ValidationResult check_blocks(const Problem& p) {
     return {};
 }
 
+/// The rules of check_findex and check_bounds for row i, as one test that names nothing.
+bool row_passes(const Problem& p, int i) {
+    const double lo = p.lo[i], hi = p.hi[i];
+    if (!std::isfinite(p.b[i]) || std::isnan(lo) || std::isnan(hi)) return false;
+    const int f = p.findex != nullptr ? p.findex[i] : -1;
+    if (f != -1) return f >= 0 && f < p.n && f != i && p.findex[f] == -1 && i >= p.nub && hi >= 0;
+    return i < p.nub || (lo <= hi && lo <= 0 && hi >= 0);
+}
+
+/// The rules of check_blocks, as one test that names nothing.
+bool blocks_pass(const Problem& p) {
+    if (p.num_blocks == 0) return true;
+    if (p.num_blocks < 0 || p.block_row == nullptr || p.block_body == nullptr || p.block_row[0] != 0 ||
+        p.block_row[p.num_blocks] != p.n)
+        return false;
+    for (int k = 1; k <= p.num_blocks; ++k)
+        if (p.block_row[k] <= p.block_row[k - 1]) return false;
+    for (int k = 0; k < 2 * p.num_blocks; ++k)
+        if (p.block_body[k] < -1 || p.block_body[k] == std::numeric_limits<int>::max()) return false;
+    return true;
+}
+
+/// True only where check_sizes, check_findex, check_bounds and check_blocks all pass, in one
+/// pass that builds no result or message: on islands of a few rows the four checks' results
+/// cost a tenth of the solve. A false sends the caller to those checks, which name the defect.
+bool structure_passes(const Problem& p) {
+    if (!check_sizes(p).valid) return false;
+    for (int i = 0; i < p.n; ++i)
+        if (!row_passes(p, i)) return false;
+    return blocks_pass(p);
+}
+
 }  // namespace
 
 ValidationResult validate_structure(const Problem& problem) {
+    if (structure_passes(problem)) return {};
     for (auto check : {check_sizes, check_findex, check_bounds, check_blocks}) {
         ValidationResult r = check(problem);
         if (!r.valid) return r;

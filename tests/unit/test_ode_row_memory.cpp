@@ -109,6 +109,40 @@ TEST(RowStateMemory, AStepNumberThatGoesBackStillStartsANewStep) {
     EXPECT_FALSE(memory.recall(keys, 4, states));
 }
 
+/// The states island rows solve to at `step`, for keys of several joints.
+std::vector<RowState> solved_states(std::size_t rows, std::uint64_t step) {
+    std::vector<RowState> states(rows);
+    for (std::size_t r = 0; r < rows; ++r) states[r] = state_of(0, static_cast<int>(r), step);
+    return states;
+}
+
+TEST(RowStateMemory, SlotsStoreWhatALookupStoresAndServeOnlyTheMemoryThatFilledThem) {
+    std::vector<int> joints(3);
+    std::vector<RowKey> keys = island_keys(joints, 0, 2);
+    for (int k : {1, 2}) {
+        const std::vector<RowKey> more = island_keys(joints, k, 2 + k);
+        keys.insert(keys.end(), more.begin(), more.end());
+    }
+    RowStateMemory with_slots, by_lookup;
+    RowStateMemory::Slots slots;
+    std::vector<RowState> a, b;
+    for (std::uint64_t step = 1; step <= 4; ++step) {
+        with_slots.recall(keys, step, a, &slots);
+        by_lookup.recall(keys, step, b);
+        EXPECT_EQ(a, b) << "step " << step;
+        with_slots.remember(keys, step, solved_states(keys.size(), step), &slots);
+        by_lookup.remember(keys, step, solved_states(keys.size(), step));
+    }
+    // a copy holds other entries: slots the original filled store into the copy by lookup
+    with_slots.recall(keys, 5, a, &slots);
+    RowStateMemory copy = with_slots;
+    copy.remember(keys, 5, solved_states(keys.size(), 5), &slots);
+    copy.recall(keys, 6, a);
+    with_slots.recall(keys, 6, b);
+    EXPECT_EQ(a, solved_states(keys.size(), 5));
+    EXPECT_EQ(b, solved_states(keys.size(), 4));
+}
+
 TEST(OrderingCache, EqualIslandsWithDifferentIdentitiesKeepTheirOwnOrderings) {
     dMLCPJoint joints[2] = {};
     joints[0].row = 0;

@@ -131,8 +131,9 @@ struct Tuning {
     /// with the rest of the budget; if that gives up, the plain attempt resumes. 0: no rescue.
     int rescue_after = 8;
     /// Where that plain attempt does not converge, first single pivots from its least
-    /// infeasible index set, each adding or removing one row of a dense factor of A_FF
-    /// (pivoting/single_pivots.h), before the regularization continuation. Needs rescue_after > 0.
+    /// infeasible iterate: an active-set method that terminates finitely, each step adding or
+    /// removing one row of a dense factor of A_FF (pivoting/active_set.h), before the
+    /// regularization continuation. Needs rescue_after > 0.
     bool single_pivots = true;
     /// Consistent friction: most outer bound updates, damped (new = (1-d)*old + d*target).
     int max_friction_rounds = 100;
@@ -225,10 +226,10 @@ struct Residuals {
 /// What the pivoting did to reach an answer, all fixed-bound solves and friction rounds together.
 struct PivotStats {
     int pivots = 0;              ///< pivot steps (solves of A_FF x_F = rhs)
-    int murty_pivots = 0;        ///< of which single (Murty) pivots
+    int murty_pivots = 0;        ///< of which single pivots (Murty's, and the active set's steps)
     int downdate_steps = 0;      ///< steps whose L_FF came from copying L and deleting rows
     int refactor_steps = 0;      ///< steps whose L_FF came from a (partial) refactorization
-    /// steps whose L_FF came from the single pivots' incremental factor (one row added or removed;
+    /// steps whose L_FF came from the active set's incremental factor (one row added or removed;
     /// Tuning::single_pivots); pivots = downdate_steps + refactor_steps + update_steps
     int update_steps = 0;
     int accuracy_refactors = 0;  ///< deleted factors rejected by the free-residual check and refactored

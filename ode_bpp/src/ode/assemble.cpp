@@ -161,12 +161,44 @@ void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuff
     else out.assign_lower(diagonal, lower, order);
 }
 
-void assemble_dense_lower(const dMLCP& island, double* A, int lda, AssemblyBuffers& buffers) {
+void assemble_dense_lower(const dMLCP& island, double* A, int lda, AssemblyBuffers& /*buffers: not needed*/) {
     for (int i = 0; i < island.m; ++i) {
         double* row = A + static_cast<std::ptrdiff_t>(i) * lda;
         std::fill(row, row + i, 0.0);
     }
-    assemble_joints(island, buffers, [A, lda](int i, int j, double a) { A[static_cast<std::ptrdiff_t>(i) * lda + j] = a; });
+    // Block (p, q) row by row, each entry summed as row_against_joint sums it (from 0, the shared
+    // bodies in shared_sides' order), with the pointers set once per row and no call per entry;
+    // the diagonal block stops at the diagonal, which diagonal_entry gives.
+    const auto block = [&island, A, lda](const dMLCPJoint& p, const dMLCPJoint& q, const SharedSides& shared, bool own) {
+        for (int i = p.row; i < p.row + p.m; ++i) {
+            double* out = A + static_cast<std::ptrdiff_t>(i) * lda;
+            const int j_end = own ? i : q.row + q.m;
+            const dReal* m0 = side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[0], i);
+            const dReal* j0 = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[0], q.row);
+            if (shared.count == 1) {
+                for (int j = q.row; j < j_end; ++j, j0 += dMLCP_J_ROW) out[j] = 0.0 + body_term(m0, j0);
+            } else if (shared.count == 2) {
+                const dReal* m1 = side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[1], i);
+                const dReal* j1 = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[1], q.row);
+                for (int j = q.row; j < j_end; ++j, j0 += dMLCP_J_ROW, j1 += dMLCP_J_ROW) {
+                    double a = 0.0 + body_term(m0, j0);
+                    a += body_term(m1, j1);
+                    out[j] = a;
+                }
+            }  // no shared body: the entries stay 0
+            if (own) out[i] = diagonal_entry(island, p, i, shared);
+        }
+    };
+    // the earlier joints that share a body, by a scan of all pairs (O(nj^2) <= O(m^2), the cost
+    // of clearing A): on a small island incidence lists cost more than the scan
+    for (int pj = 0; pj < island.nj; ++pj) {
+        const dMLCPJoint& p = island.joints[pj];
+        for (int qj = 0; qj < pj; ++qj) {
+            const SharedSides shared = shared_sides(p, island.joints[qj]);
+            if (shared.count > 0) block(p, island.joints[qj], shared, false);
+        }
+        block(p, p, shared_sides(p, p), true);
+    }
 }
 
 }  // namespace ode_bpp::ode

@@ -1,6 +1,7 @@
 #include "ode/row_identity.h"
 
 #include <algorithm>
+#include <atomic>
 #include <functional>
 
 namespace ode_bpp {
@@ -29,10 +30,14 @@ std::size_t JointKeyHash::operator()(const JointKey& k) const {
 namespace {
 
 /// Numbers each contact among the island's contacts of the same geom pair, in joint order:
-/// sorted by pair, stably (joint order holds within a pair), then counted. O(c log c).
+/// sorted by pair, then by joint (the order of a stable sort by pair, without the buffer that
+/// std::stable_sort allocates at every call), then counted. O(c log c).
 void number_contacts(std::vector<ContactSlot>& contacts) {
-    std::stable_sort(contacts.begin(), contacts.end(), [](const ContactSlot& x, const ContactSlot& y) {
-        return std::less<const void*>()(x.g1, y.g1) || (x.g1 == y.g1 && std::less<const void*>()(x.g2, y.g2));
+    std::sort(contacts.begin(), contacts.end(), [](const ContactSlot& x, const ContactSlot& y) {
+        const std::less<const void*> less;
+        if (x.g1 != y.g1) return less(x.g1, y.g1);
+        if (x.g2 != y.g2) return less(x.g2, y.g2);
+        return x.joint < y.joint;
     });
     for (std::size_t k = 0; k < contacts.size(); ++k) {
         const bool same_pair = k > 0 && contacts[k].g1 == contacts[k - 1].g1 && contacts[k].g2 == contacts[k - 1].g2;
@@ -59,6 +64,22 @@ void row_keys(const dMLCP& problem, std::vector<RowKey>& keys, std::vector<Conta
     }
 }
 
+std::uint64_t RowStateMemory::fresh_id() {
+    static std::atomic<std::uint64_t> next{1};
+    return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+RowStateMemory::RowStateMemory(const RowStateMemory& other)
+    : joints_(other.joints_), last_world_step_(other.last_world_step_), steps_(other.steps_) {}
+
+RowStateMemory& RowStateMemory::operator=(const RowStateMemory& other) {
+    joints_ = other.joints_;
+    last_world_step_ = other.last_world_step_;
+    steps_ = other.steps_;
+    id_ = fresh_id();
+    return *this;
+}
+
 void RowStateMemory::enter_step(std::uint64_t step) {
     if (steps_ > 0 && step == last_world_step_) return;
     last_world_step_ = step;
@@ -69,15 +90,29 @@ void RowStateMemory::enter_step(std::uint64_t step) {
     }
 }
 
-bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step, std::vector<RowState>& states) {
+bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step, std::vector<RowState>& states,
+                            Slots* slots) {
     enter_step(step);
     states.assign(keys.size(), RowState::Free);
+    if (slots != nullptr) {
+        slots->joints_.clear();
+        slots->memory_ = id_;
+        slots->steps_ = steps_;
+    }
     bool any = false;
     for (std::size_t begin = 0, end; begin < keys.size(); begin = end) {
         end = joint_end(keys, begin);
-        const auto it = joints_.find(JointKey(keys[begin]));
-        if (it == joints_.end()) continue;
-        const std::vector<Row>& rows = it->second.rows;
+        const Entry* entry = nullptr;
+        if (slots != nullptr) {
+            Entry& made = joints_[JointKey(keys[begin])];  // empty until remember stores into it
+            slots->joints_.push_back({end, &made});
+            entry = &made;
+        } else {
+            const auto it = joints_.find(JointKey(keys[begin]));
+            if (it == joints_.end()) continue;
+            entry = &it->second;
+        }
+        const std::vector<Row>& rows = entry->rows;
         for (std::size_t i = begin; i < end; ++i) {
             const auto r = static_cast<std::size_t>(keys[i].row);
             if (r >= rows.size() || !is_kept(rows[r])) continue;
@@ -88,18 +123,33 @@ bool RowStateMemory::recall(const std::vector<RowKey>& keys, std::uint64_t step,
     return any;
 }
 
-void RowStateMemory::remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states) {
+void RowStateMemory::store(Entry& entry, const std::vector<RowKey>& keys, std::size_t begin, std::size_t end,
+                           const std::vector<RowState>& states) {
+    entry.seen = steps_;
+    for (std::size_t i = begin; i < end; ++i) {
+        const auto r = static_cast<std::size_t>(keys[i].row);
+        if (r >= entry.rows.size()) entry.rows.resize(r + 1);
+        entry.rows[r] = Row{states[i], steps_};
+    }
+}
+
+void RowStateMemory::remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states,
+                              const Slots* slots) {
     if (keys.size() != states.size()) return;
     enter_step(step);
+    const bool filled = slots != nullptr && slots->memory_ == id_ && slots->steps_ == steps_ &&
+                        !slots->joints_.empty() && slots->joints_.back().end == keys.size();
+    if (filled) {
+        std::size_t begin = 0;
+        for (const Slots::Joint& joint : slots->joints_) {
+            store(*joint.entry, keys, begin, joint.end, states);
+            begin = joint.end;
+        }
+        return;
+    }
     for (std::size_t begin = 0, end; begin < keys.size(); begin = end) {
         end = joint_end(keys, begin);
-        Entry& entry = joints_[JointKey(keys[begin])];
-        entry.seen = steps_;
-        for (std::size_t i = begin; i < end; ++i) {
-            const auto r = static_cast<std::size_t>(keys[i].row);
-            if (r >= entry.rows.size()) entry.rows.resize(r + 1);
-            entry.rows[r] = Row{states[i], steps_};
-        }
+        store(joints_[JointKey(keys[begin])], keys, begin, end, states);
     }
 }
 

@@ -62,16 +62,42 @@ void row_keys(const dMLCP& problem, std::vector<RowKey>& keys, std::vector<Conta
 /// neighbours finished first. Within a step islands hold disjoint keys, so an island only ever
 /// sees what earlier steps stored.
 class RowStateMemory {
+    struct Entry;
+
 public:
     /// Entries not refreshed for this many steps are dropped (a contact that vanishes for one
     /// step is still recalled when it returns).
     static constexpr std::uint64_t kKeepSteps = 2;
 
+    /// The joints of one island where recall found them (or made room for them), so that
+    /// remember stores the island's index set without a second hash lookup per joint (on an
+    /// island of one joint the lookups cost as much as its factorization). Kept by the caller;
+    /// it serves the keys it was filled with, in the step it was filled in.
+    class Slots {
+        friend class RowStateMemory;
+        struct Joint {
+            std::size_t end;  ///< one past the joint's last key
+            Entry* entry;     ///< stable: entries are erased only when a later step begins
+        };
+        std::vector<Joint> joints_;
+        std::uint64_t memory_ = 0;  ///< RowStateMemory::id_ of the memory that filled it
+        std::uint64_t steps_ = 0;   ///< its steps_ then
+    };
+
+    RowStateMemory() = default;
+    /// A copy (or an assignment) holds other entries, so it takes a new identity: slots filled
+    /// by the original never serve it.
+    RowStateMemory(const RowStateMemory& other);
+    RowStateMemory& operator=(const RowStateMemory& other);
+
     /// step: the world step of the island. states: output, one per key; rows never seen start
-    /// Free. Returns true if any row was known.
-    bool recall(const std::vector<RowKey>& keys, std::uint64_t step, std::vector<RowState>& states);
-    /// Stores the final index set of an island solved in world step `step`.
-    void remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states);
+    /// Free. Returns true if any row was known. slots: null, or filled for remember.
+    bool recall(const std::vector<RowKey>& keys, std::uint64_t step, std::vector<RowState>& states,
+                Slots* slots = nullptr);
+    /// Stores the final index set of an island solved in world step `step`. slots: null, or
+    /// filled by recall with the same keys in the same step (otherwise the joints are looked up).
+    void remember(const std::vector<RowKey>& keys, std::uint64_t step, const std::vector<RowState>& states,
+                  const Slots* slots = nullptr);
     /// Rows held (stored within the last kKeepSteps steps).
     std::size_t size() const;
 
@@ -88,10 +114,17 @@ private:
     /// drops the joints whose rows are all older than kKeepSteps.
     void enter_step(std::uint64_t step);
     bool is_kept(const Row& row) const { return row.seen != 0 && steps_ - row.seen <= kKeepSteps; }
+    /// The states of keys [begin, end), one joint's rows, into its entry, as of this step.
+    void store(Entry& entry, const std::vector<RowKey>& keys, std::size_t begin, std::size_t end,
+               const std::vector<RowState>& states);
 
     std::unordered_map<JointKey, Entry, JointKeyHash> joints_;
     std::uint64_t last_world_step_ = 0;
     std::uint64_t steps_ = 0;  ///< distinct world steps seen so far
+    /// Unique in the process, so that slots of a memory since destroyed (a world forgotten while
+    /// one of its islands was being solved) are never taken for this one's.
+    std::uint64_t id_ = fresh_id();
+    static std::uint64_t fresh_id();
 };
 
 }  // namespace ode_bpp

@@ -99,6 +99,7 @@ const char* fallback_name(const Result& r) {
 struct IslandScratch {
     std::vector<RowKey> keys;
     std::vector<ContactSlot> contacts;
+    RowStateMemory::Slots slots;  ///< where recall found the island's joints, for remember
     OrderingCache::Signature structure;
     ode::IslandView view;
     Start start;
@@ -117,28 +118,32 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     IslandScratch& scratch = thread_scratch();
     std::vector<RowKey>& keys = scratch.keys;
     OrderingCache::Signature& structure = scratch.structure;
-    if (problem->joints != nullptr) {
-        row_keys(*problem, keys, scratch.contacts);
-        if (!keys.empty()) OrderingCache::signature(*problem, keys.front(), structure);
-    }
+    if (problem->joints != nullptr) row_keys(*problem, keys, scratch.contacts);
     const bool known_rows = problem->joints != nullptr && !keys.empty();
     const bool use_memory = known_rows && has_bounded_rows(*problem);
 
     Start& start = scratch.start;
     start.ordering.clear();
     Options options;
-    bool warm = false;
+    bool warm = false, small = false, recalled = false;
     {
         std::lock_guard<std::mutex> g(hook().lock);
         WorldState& ws = hook().worlds[problem->world];
         options = ws.settings.options;
-        if (ws.settings.warm_start && use_memory) warm = ws.memory.recall(keys, problem->step, start.states);
-        if (known_rows)
+        options.method = method;
+        // a small island's solve takes no ordering (pivoting/small_island.h): no signature, no lookup
+        small = pivoting::is_small_island(problem->m, options);
+        if (ws.settings.warm_start && use_memory) {
+            warm = ws.memory.recall(keys, problem->step, start.states, &scratch.slots);
+            recalled = true;
+        }
+        if (known_rows && !small) {
+            OrderingCache::signature(*problem, keys.front(), structure);
             if (const std::vector<int>* known = ws.orderings.find(structure)) start.ordering = *known;
+        }
     }
-    options.method = method;
     if (!warm) start.states.clear();
-    const Problem q = scratch.view.of(*problem, pivoting::is_small_island(problem->m, options), start.ordering);
+    const Problem q = scratch.view.of(*problem, small, start.ordering);
 
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
     Result r = solve(q, options, Strided{problem->pairsbx + 1, 2}, start, scratch.workspace);
@@ -152,8 +157,9 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     std::lock_guard<std::mutex> g(hook().lock);
     HookState& h = hook();
     WorldState& ws = h.worlds[problem->world];
-    if (use_memory && status != dMLCPFailed) ws.memory.remember(keys, problem->step, r.states);
-    if (known_rows && !r.ordering.empty() && r.ordering != start.ordering)
+    if (use_memory && status != dMLCPFailed)
+        ws.memory.remember(keys, problem->step, r.states, recalled ? &scratch.slots : nullptr);
+    if (known_rows && !small && !r.ordering.empty() && r.ordering != start.ordering)
         ws.orderings.store(structure, r.ordering);
     ws.last = std::move(r);  // last use of r: no copy of its vectors per island
     return status;

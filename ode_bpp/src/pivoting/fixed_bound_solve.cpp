@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "pivoting/single_pivots.h"
+#include "pivoting/active_set.h"
 #include "pivoting/tuning.h"
 
 namespace ode_bpp::pivoting {
@@ -26,9 +26,9 @@ FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<
     }
 }
 
-/// The plain loop gets Tuning::rescue_after steps; if it has not converged by then, single
-/// pivots on an incremental factor (single_pivots.h) go on from its least infeasible index
-/// set, with a budget of their own; where they do not finish, the rescue starts afresh
+/// The plain loop gets Tuning::rescue_after steps; if it has not converged by then, the
+/// active-set method on an incremental factor (active_set.h) goes on from its least infeasible
+/// iterate, with a budget of its own; where it does not finish, the rescue starts afresh
 /// from the warm start with the rest of the budget, and should it give up, the plain loop
 /// resumes from its least infeasible index set. Converged, MaxIterations or Breakdown.
 LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vector<double>& x, int budget) {
@@ -38,11 +38,11 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
     LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, options_.tuning.rescue_after) : budget),
                                              states, x, counters_, buffers_.loop);
     if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
-    if (options_.tuning.single_pivots && single_pivots_apply(lcp_)) {
+    if (options_.tuning.single_pivots && active_set_applies(lcp_)) {
         const int before = counters_.pivots;
-        outcome = by_single_pivots(states, x);
+        outcome = by_active_set(states, x);
         if (outcome == LoopOutcome::Converged) return outcome;
-        first += counters_.pivots - before;  // the single pivots had a budget of their own
+        first += counters_.pivots - before;  // the active set had a budget of its own
     }
     outcome = rescue(states, x, left());
     if (outcome != LoopOutcome::Stalled) return outcome;
@@ -51,14 +51,17 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
     return pivot_fixed_bounds(lcp_, solver_, settings(left()), states, x, counters_, buffers_.loop);
 }
 
-/// Single pivots from states (single_pivots.h), then the plain loop from their answer,
-/// which certifies it with the factor strategy's own solve and polishes it (usually one step).
-/// Converged, MaxIterations or Breakdown; states as they came in unless Converged.
-LoopOutcome FixedBoundSolver::by_single_pivots(std::vector<RowState>& states, std::vector<double>& x) {
-    const int max_pivots = tuning::kSinglePivotsPerRow * lcp_.n() + tuning::kSinglePivotsExtra;
-    const LoopOutcome outcome = single_pivots(lcp_, settings(max_pivots), states, x, counters_, buffers_.single_pivots);
+/// The active-set method from x, the plain loop's least infeasible iterate (active_set.h),
+/// then the plain loop from its answer, which certifies it with the factor strategy's own solve
+/// and polishes it (usually one step). Converged, MaxIterations or Breakdown; states and x as
+/// they came in unless Converged.
+LoopOutcome FixedBoundSolver::by_active_set(std::vector<RowState>& states, std::vector<double>& x) {
+    const int max_steps = tuning::kActiveSetStepsPerRow * lcp_.n() + tuning::kActiveSetStepsExtra;
+    const LoopOutcome outcome = active_set(lcp_, settings(max_steps), states, x, counters_, buffers_.active_set,
+                                           buffers_.free_rows);
     if (outcome != LoopOutcome::Converged) return outcome;
-    return pivot_fixed_bounds(lcp_, solver_, settings(std::max(1, options_.tuning.rescue_after)), states, x, counters_, buffers_.loop);
+    return pivot_fixed_bounds(lcp_, solver_, settings(std::max(1, options_.tuning.rescue_after)), states, x, counters_,
+                              buffers_.loop);
 }
 
 /// The rescue continuation (regularization.h): stages on A + delta I, the first from the warm

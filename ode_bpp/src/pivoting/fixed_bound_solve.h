@@ -1,9 +1,10 @@
 // One fixed-bound solve of a BPP method: the boxed LCP with its bounds as they stand (paper
 // Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
 // decides: the plain attempt from the warm start; where that does not converge within
-// Tuning::rescue_after steps, single pivots on an incremental factor (single_pivots.h),
-// then the rescue continuation, then the plain loop again where the rescue gives up; and all of
-// it again one rung up the breakdown ladder after a Cholesky breakdown.
+// Tuning::rescue_after steps, the active-set method on an incremental dense factor
+// (active_set.h, which terminates finitely), then the rescue continuation, then the plain loop
+// again where the rescue gives up; and all of it again one rung up the breakdown ladder after a
+// Cholesky breakdown.
 //
 // Index space: the permuted space of the BoxedLcp and its FreeSolver.
 #pragma once
@@ -12,11 +13,12 @@
 #include <vector>
 
 #include "ode_bpp/solver.h"
+#include "pivoting/active_set.h"
 #include "pivoting/boxed_lcp.h"
+#include "pivoting/free_rows_factor.h"
 #include "pivoting/free_solver.h"
 #include "pivoting/pivot_loop.h"
 #include "pivoting/regularization.h"
-#include "pivoting/single_pivots.h"
 
 namespace ode_bpp::pivoting {
 
@@ -31,7 +33,8 @@ enum class FixedOutcome {
 /// capacity outlives one solve.
 struct FixedBoundBuffers {
     LoopWorkspace loop;
-    SinglePivotsWorkspace single_pivots;
+    FreeRowsFactor free_rows;  ///< the active set's dense factor
+    ActiveSetWorkspace active_set;
 };
 
 class FixedBoundSolver {
@@ -51,7 +54,7 @@ public:
 
 private:
     LoopOutcome at_target(std::vector<RowState>& states, std::vector<double>& x, int budget);
-    LoopOutcome by_single_pivots(std::vector<RowState>& states, std::vector<double>& x);
+    LoopOutcome by_active_set(std::vector<RowState>& states, std::vector<double>& x);
     LoopOutcome rescue(std::vector<RowState>& states, std::vector<double>& x, int budget);
     void run_continuation(std::vector<RowState>& states, std::vector<double>& x, int budget);
     /// Factors A + shift I unless the solver already holds that factor; false on breakdown.

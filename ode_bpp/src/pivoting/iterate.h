@@ -1,4 +1,4 @@
-// What goes with an iterate x of the pivoting loops (pivot_loop.cpp, single_pivots.cpp):
+// What goes with an iterate x of the pivoting loops (pivot_loop.cpp, active_set.cpp):
 // w = (A + shift I) x - b, the row scales (|A||x| + |b|)_i that classify_row.h measures against,
 // and Eq. 6's backward error on the free rows.
 #pragma once

@@ -38,8 +38,9 @@ bool solve_free_rows(const Problem& p, int nf, SmallIslandBuffers& ws, std::vect
     for (int k = 0; k < nf; ++k) {
         const int i = free[k];
         double rhs = p.b[i];
-        for (int j = 0; j < n; ++j)
-            if (x[j] != 0) rhs -= entry(p, i, j) * x[j];  // A_FT x_T: x_F is still 0
+        if (nf < n)  // A_FT x_T; x_F is still 0
+            for (int j = 0; j < n; ++j)
+                if (x[j] != 0) rhs -= entry(p, i, j) * x[j];
         ws.rhs[k] = rhs;
         double* row = a + static_cast<std::ptrdiff_t>(k) * n;
         for (int l = 0; l < k; ++l) row[l] = p.A[static_cast<std::ptrdiff_t>(i) * p.lda + free[l]];
@@ -209,14 +210,15 @@ private:
     void polish(std::vector<RowState>& states, std::vector<double>& x, int budget) {
         const double limit = std::max(0.1 * o_.tolerance, 100.0 * n_ * kEps);
         for (int round = 0; round < kPolishRounds && budget > 0; ++round) {
+            const auto polished = [&](int i) {
+                return ws_.lo[i] == ws_.hi[i] || wrong_sign(states[i], ws_.w[i]) <= limit * ws_.scale[i];
+            };
+            int i = 0;
+            while (i < n_ && polished(i)) ++i;
+            if (i == n_) return;
             ws_.trial = states;
-            bool any = false;
-            for (int i = 0; i < n_; ++i) {
-                if (ws_.lo[i] == ws_.hi[i] || wrong_sign(states[i], ws_.w[i]) <= limit * ws_.scale[i]) continue;
-                ws_.trial[i] = RowState::Free;
-                any = true;
-            }
-            if (!any) return;
+            for (; i < n_; ++i)
+                if (!polished(i)) ws_.trial[i] = RowState::Free;
             keep(states, x);
             int steps = 0;
             const bool converged = pivot(ws_.trial, x, std::min(kPolishSteps, budget), steps);

@@ -28,16 +28,14 @@ constexpr double kRescueFloor = 1e-12;
 /// once when its block steps revisit an index set.
 constexpr int kMurtyPatience = 2;
 
-// ---- single pivots (single_pivots.h) -----------------------------------------------------------
-/// Single pivots on the incremental dense factor may take this many pivots per row of
-/// the island, plus kSinglePivotsExtra, before the fixed-bound solve goes on to the rescue.
-constexpr int kSinglePivotsPerRow = 4;
-constexpr int kSinglePivotsExtra = 50;
-/// Single pivots without a new least count of infeasible rows after which they give up and the
-/// rescue takes over (docs/tuning.md): a bound on what a hopeless island costs.
-constexpr int kSinglePivotPatience = 150;
-/// Largest island (rows) whose free set is factored densely for single pivots (8 n² bytes).
-constexpr int kSinglePivotMaxRows = 1500;
+// ---- the active set (active_set.h) ----------------------------------------------------------
+/// Steps of the active-set method per row of the island, plus kActiveSetStepsExtra, before the
+/// fixed-bound solve goes on to the rescue: the method terminates finitely anyway; this bounds
+/// what one island may cost.
+constexpr int kActiveSetStepsPerRow = 10;
+constexpr int kActiveSetStepsExtra = 50;
+/// Largest island (rows) whose free set is factored densely for the active set (8 n² bytes).
+constexpr int kActiveSetMaxRows = 1500;
 
 // ---- friction (friction_policy.h) --------------------------------------------------------------
 /// A linked solve (Consistent friction) may take this many times Options::max_pivots.

@@ -1,5 +1,4 @@
-// The index sets a pivoting loop has entered, to recognize a cycle (pivot_loop.cpp,
-// single_pivots.cpp).
+// The index sets a pivoting loop has entered, to recognize a cycle (pivot_loop.cpp).
 #pragma once
 
 #include <algorithm>
@@ -16,8 +15,8 @@ namespace ode_bpp::pivoting {
 /// let run 6-30 steps (winch, forklift, parkour at ODE's CFM 1e-10).
 /// Only a 64-bit hash of each set is kept (8 bytes a step, where whole sets took n bytes a step
 /// and grew the process as longer runs of single pivots came): two different sets with one hash
-/// (probability about k² / 2^64 after k steps) end a stage or a greedy phase early, which
-/// neither the rescue nor single_pivots.cpp's termination depends on.
+/// (probability about k² / 2^64 after k steps) end a stage early, which
+/// the rescue does not depend on.
 class VisitedSets {
 public:
     void clear() { hashes_.clear(); }

@@ -1,0 +1,169 @@
+#include "pivoting/active_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "pivoting/classify_row.h"
+#include "pivoting/iterate.h"
+#include "pivoting/kept_buffers_impl.h"
+#include "pivoting/murty_rule.h"
+#include "pivoting/tuning.h"
+
+namespace ode_bpp::pivoting {
+
+struct ActiveSetBuffers {
+    std::vector<RowState> entry_states;  ///< what the run started from, given back on failure
+    std::vector<double> entry_x;
+    std::vector<double> target;          ///< the face's minimizer x*
+    Iterate it;
+    Infeasibility inf;
+    std::vector<std::pair<int, RowState>> reached;  ///< free rows a step took onto a bound
+};
+template class KeptBuffers<ActiveSetBuffers>;
+
+namespace {
+
+class ActiveSet {
+public:
+    ActiveSet(const BoxedLcp& lcp, const PivotSettings& settings, PivotCounters& counters, ActiveSetBuffers& ws,
+              FreeRowsFactor& factor)
+        : lcp_(lcp), settings_(settings), counters_(counters), ws_(ws), factor_(factor), n_(lcp.n()) {
+        ws_.it.lo = lcp.lo;
+        ws_.it.hi = lcp.hi;
+    }
+
+    LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
+        ws_.entry_states = states;
+        ws_.entry_x = x;
+        project(states, x);
+        if (!factor_.reset(lcp_, states, x)) return give_up(states, x, LoopOutcome::Breakdown);
+        bool fresh = true;  // the factor has not been updated since it was built
+        for (int step = 0; step < settings_.max_pivots; ++step) {
+            ++counters_.pivots;
+            ++counters_.murty_pivots;
+            ++counters_.update_steps;
+            if (settings_.record_steps)
+                counters_.tight_per_step.push_back(n_ - static_cast<int>(factor_.members().size()));
+            ws_.target = x;
+            factor_.solve(ws_.target);
+            const double alpha = step_length(x);
+            if (alpha < 1) {
+                move(alpha, states, x);
+                fresh = false;
+                continue;
+            }
+            // w at x*: for Eq. 4 below, and to check the updated factor where it decides
+            refresh_residual(lcp_, ws_.target, ws_.it);
+            if (!fresh && !factor_.accurate(ws_.it, settings_.tolerance)) {
+                ++counters_.accuracy_refactors;
+                if (!factor_.refresh()) return give_up(states, x, LoopOutcome::Breakdown);
+                fresh = true;
+                continue;  // this step again on the fresh factor
+            }
+            x.swap(ws_.target);
+            tighten_rows_on_bounds(states, x);
+            classify_iterate(lcp_, ws_.it, states, x, settings_.tolerance, ws_.inf);
+            if (ws_.inf.count() == 0) return LoopOutcome::Converged;
+            const int row = ws_.inf.rows[most_violated(ws_.inf)];  // a tight row: free rows are feasible
+            if (!factor_.add(row)) return give_up(states, x, LoopOutcome::Breakdown);
+            states[row] = RowState::Free;
+            fresh = false;
+        }
+        return give_up(states, x, LoopOutcome::MaxIterations);
+    }
+
+private:
+    /// x onto [lo, hi]; a row on a bound after that starts tight there (so that every free row
+    /// is strictly inside), unless it may not be tight.
+    void project(std::vector<RowState>& states, std::vector<double>& x) const {
+        states.resize(static_cast<std::size_t>(n_));
+        for (int i = 0; i < n_; ++i) {
+            x[i] = std::clamp(x[i], lcp_.lo[i], lcp_.hi[i]);
+            if (lcp_.always_free[i]) states[i] = RowState::Free;
+            else if (x[i] == lcp_.lo[i]) states[i] = RowState::AtLo;
+            else if (x[i] == lcp_.hi[i]) states[i] = RowState::AtHi;
+            else states[i] = RowState::Free;
+        }
+    }
+
+    /// The ratio test: the largest alpha <= 1 with x + alpha (x* - x) within the bounds.
+    double step_length(const std::vector<double>& x) const {
+        double alpha = 1;
+        for (int i : factor_.members()) {
+            const double p = ws_.target[i] - x[i];
+            if (p < 0 && ws_.target[i] < lcp_.lo[i]) alpha = std::min(alpha, (lcp_.lo[i] - x[i]) / p);
+            else if (p > 0 && ws_.target[i] > lcp_.hi[i]) alpha = std::min(alpha, (lcp_.hi[i] - x[i]) / p);
+        }
+        return alpha;
+    }
+
+    /// x += alpha (x* - x) on F; the rows that reach a bound join T there.
+    void move(double alpha, std::vector<RowState>& states, std::vector<double>& x) {
+        for (int i : factor_.members()) x[i] += alpha * (ws_.target[i] - x[i]);
+        const int before = static_cast<int>(factor_.members().size());
+        tighten_rows_on_bounds(states, x);
+        if (static_cast<int>(factor_.members().size()) == before) tighten_nearest(states, x);
+    }
+
+    /// Free rows at or beyond a bound go to T at that bound (rounding in the step may leave the
+    /// blocking row a hair inside: tighten_nearest catches that).
+    void tighten_rows_on_bounds(std::vector<RowState>& states, std::vector<double>& x) {
+        ws_.reached.clear();
+        for (int i : factor_.members()) {
+            if (lcp_.always_free[i]) continue;
+            if (x[i] <= lcp_.lo[i]) ws_.reached.emplace_back(i, RowState::AtLo);
+            else if (x[i] >= lcp_.hi[i]) ws_.reached.emplace_back(i, RowState::AtHi);
+        }
+        for (const auto& [row, to] : ws_.reached) tighten(row, to, states, x);
+    }
+
+    /// The free row closest to a bound in the direction it moves joins T: the blocking row.
+    void tighten_nearest(std::vector<RowState>& states, std::vector<double>& x) {
+        int row = -1;
+        RowState to = RowState::Free;
+        double least = 0;
+        for (int i : factor_.members()) {
+            const double p = ws_.target[i] - x[i];
+            const double gap = p < 0 ? (x[i] - lcp_.lo[i]) / -p : p > 0 ? (lcp_.hi[i] - x[i]) / p : -1;
+            if (gap < 0 || !std::isfinite(gap) || (row >= 0 && gap >= least)) continue;
+            row = i;
+            least = gap;
+            to = p < 0 ? RowState::AtLo : RowState::AtHi;
+        }
+        if (row >= 0) tighten(row, to, states, x);
+    }
+
+    void tighten(int row, RowState to, std::vector<RowState>& states, std::vector<double>& x) {
+        states[row] = to;
+        x[row] = tight_value(lcp_, row, to);
+        factor_.remove(row, x[row]);
+    }
+
+    LoopOutcome give_up(std::vector<RowState>& states, std::vector<double>& x, LoopOutcome outcome) const {
+        states = ws_.entry_states;
+        x = ws_.entry_x;
+        return outcome;
+    }
+
+    const BoxedLcp& lcp_;
+    const PivotSettings& settings_;
+    PivotCounters& counters_;
+    ActiveSetBuffers& ws_;
+    FreeRowsFactor& factor_;
+    const int n_;
+};
+
+}  // namespace
+
+bool active_set_applies(const BoxedLcp& lcp) {
+    return !lcp.has_moving_bounds() && lcp.n() <= tuning::kActiveSetMaxRows;
+}
+
+LoopOutcome active_set(const BoxedLcp& lcp, const PivotSettings& settings, std::vector<RowState>& states,
+                       std::vector<double>& x, PivotCounters& counters, ActiveSetWorkspace& workspace,
+                       FreeRowsFactor& factor) {
+    return ActiveSet(lcp, settings, counters, workspace.contents(), factor).run(states, x);
+}
+
+}  // namespace ode_bpp::pivoting

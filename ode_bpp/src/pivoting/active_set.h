@@ -1,0 +1,63 @@
+// A primal-feasible active-set method for the fixed-bound problem: the stage of a fixed-bound
+// solve that terminates finitely, where block pivots run out of steps.
+//
+// The maths. With A + shift I SPD (ODE's CFM > 0, or a shift of the breakdown ladder), the boxed
+// LCP of boxed_lcp.h is exactly the KKT system of the strictly convex box QP
+//     min q(x) = 1/2 x'(A + shift I)x - b'x   subject to   lo <= x <= hi,
+// with w = (A + shift I)x - b = grad q the multipliers of the active bounds (w >= 0 at lo,
+// w <= 0 at hi, w = 0 strictly inside), so its unique minimizer is the LCP's unique solution.
+// The method (Nocedal & Wright, Numerical Optimization, Alg. 16.3, on bound constraints) keeps x
+// feasible, the tight rows T at their bounds and every free row strictly inside its bounds:
+//  - x* = the minimizer of q over the face {x_T fixed}: Eq. 6 with the free set's factor;
+//  - if x* is within the bounds, x = x*; if every tight row's multiplier has the right sign
+//    (Eq. 4, classify_row.h) x solves the problem, otherwise the row of the largest wrong-sign
+//    multiplier leaves T (one row appended to the factor);
+//  - otherwise the ratio test: x moves along x* - x until the first free row reaches a bound,
+//    and that row joins T (one row removed from the factor).
+// Why it terminates: q is convex along the segment towards x*, the face's minimizer, so it never
+// rises. After a row leaves T with a wrong-sign multiplier, the face's new minimizer moves it
+// strictly inwards (ibid., Thm. 16.5), and every other free row is strictly inside its bounds,
+// so the next step is not zero and q falls strictly: the face minimizers where rows leave T have
+// strictly falling q, hence no face (T with its bounds) repeats, and between two of them at most
+// n rows join T. There are finitely many faces. Rows that may not be tight (BoxedLcp::always_free,
+// infinite bounds) never join T; pinned rows (lo = hi) never leave it.
+// Each step costs one solve with the dense factor and one row update, O(|F|²)
+// (free_rows_factor.h), like one of ODE's Dantzig pivots; it starts from a given iterate
+// projected onto the bounds, so a good start (the pivoting loop's least infeasible iterate)
+// leaves only the rows whose state is wrong there.
+//
+// Index space: the permuted space of the BoxedLcp.
+#pragma once
+
+#include <vector>
+
+#include "ode_bpp/solver.h"
+#include "pivoting/boxed_lcp.h"
+#include "pivoting/free_rows_factor.h"
+#include "pivoting/kept_buffers.h"
+#include "pivoting/pivot_loop.h"
+
+namespace ode_bpp::pivoting {
+
+/// True when active_set can take this problem on: fixed bounds only (no moving friction bounds),
+/// and small enough for a dense factor (tuning::kActiveSetMaxRows).
+bool active_set_applies(const BoxedLcp& lcp);
+
+/// The buffers of active_set (active_set.cpp), kept by the caller so that their capacity
+/// outlives one run. One run per workspace at a time.
+struct ActiveSetBuffers;
+using ActiveSetWorkspace = KeptBuffers<ActiveSetBuffers>;
+extern template class KeptBuffers<ActiveSetBuffers>;  // instantiated where ActiveSetBuffers is defined
+
+/// Runs the active-set method on (A + lcp.shift I, b, lo, hi) (fixed bounds only) from x (n
+/// entries, projected onto the bounds here; the rows at a bound after that start tight) for at
+/// most settings.max_pivots steps, to settings.tolerance (classify_row.h). Converged: states
+/// and x solve it. MaxIterations or Breakdown (a row dependent on the free set to machine
+/// precision): states and x as they came in. Each step counts in counters.pivots, murty_pivots
+/// (a single pivot) and update_steps. factor: the free set's factor (its state on return
+/// unspecified).
+LoopOutcome active_set(const BoxedLcp& lcp, const PivotSettings& settings, std::vector<RowState>& states,
+                       std::vector<double>& x, PivotCounters& counters, ActiveSetWorkspace& workspace,
+                       FreeRowsFactor& factor);
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,81 @@
+#include "pivoting/free_rows_factor.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ode_bpp::pivoting {
+
+bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x) {
+    lcp_ = &lcp;
+    const int n = lcp.n();
+    tight_x_.assign(static_cast<std::size_t>(n), 0.0);
+    for (int i = 0; i < n; ++i)
+        if (states[i] != RowState::Free) tight_x_[i] = x[i];
+    members_.clear();
+    for (int i = 0; i < n; ++i)
+        if (states[i] == RowState::Free) members_.push_back(i);
+    return refresh();
+}
+
+bool FreeRowsFactor::refresh() {
+    const int n = lcp_->n();
+    refresh_rows_.swap(members_);  // F, rebuilt below in increasing index
+    std::sort(refresh_rows_.begin(), refresh_rows_.end());
+    members_.clear();
+    factor_.reset(n);
+    position_.assign(static_cast<std::size_t>(n), -1);
+    column_.resize(static_cast<std::size_t>(n));
+    lcp_->A->multiply(tight_x_, 0, tight_product_);
+    for (int i = 0; i < n; ++i) tight_product_[i] -= lcp_->A->diag(i) * tight_x_[i];
+    for (int i : refresh_rows_)
+        if (!add(i)) return false;
+    return true;
+}
+
+bool FreeRowsFactor::add(int i) {
+    const linalg::SymmetricRows& A = *lcp_->A;
+    const int m = factor_.size();
+    std::fill(column_.begin(), column_.begin() + m, 0.0);
+    for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+        const int p = position_[A.col(k)];
+        if (p >= 0) column_[p] = A.val(k);
+    }
+    if (!factor_.append(column_.data(), A.diag(i) + lcp_->shift)) return false;
+    position_[i] = m;
+    members_.push_back(i);
+    if (tight_x_[i] != 0) add_column(i, -tight_x_[i]);
+    tight_x_[i] = 0;
+    return true;
+}
+
+void FreeRowsFactor::remove(int i, double value) {
+    const int p = position_[i];
+    factor_.remove(p);
+    members_.erase(members_.begin() + p);
+    position_[i] = -1;
+    for (int k = p; k < static_cast<int>(members_.size()); ++k) position_[members_[k]] = k;
+    tight_x_[i] = value;
+    if (value != 0) add_column(i, value);
+}
+
+void FreeRowsFactor::add_column(int i, double factor) {
+    const linalg::SymmetricRows& A = *lcp_->A;
+    for (int k = A.row_begin(i); k < A.row_end(i); ++k) tight_product_[A.col(k)] += factor * A.val(k);
+}
+
+void FreeRowsFactor::solve(std::vector<double>& x) const {
+    const int m = factor_.size();
+    rhs_.resize(static_cast<std::size_t>(m));
+    for (int p = 0; p < m; ++p) rhs_[p] = lcp_->b[members_[p]] - tight_product_[members_[p]];
+    factor_.solve(rhs_.data());
+    for (int p = 0; p < m; ++p) x[members_[p]] = rhs_[p];
+}
+
+bool FreeRowsFactor::accurate(const Iterate& it, double tolerance) const {
+    double worst = 0;
+    for (int i : members_)
+        if (it.w[i] != 0) worst = std::max(worst, std::abs(it.w[i]) / it.scale[i]);
+    return worst <= accuracy_limit(tolerance, lcp_->n());
+}
+
+}  // namespace ode_bpp::pivoting

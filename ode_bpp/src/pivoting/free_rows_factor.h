@@ -1,0 +1,56 @@
+// A dense Cholesky factor of (A + shift I)_FF for a free set F that changes by one row at a time
+// (linalg/incremental_cholesky.h), and Eq. 6 solved with it: the factor behind the active-set
+// stage (active_set.h), where each step moves one row between F and T, O(|F|²) instead of a
+// deletion from L0 or a refactorization per step. The right-hand side's A_FT x_T is kept up to
+// date by one row of A per change of T, O(row entries), instead of a product with A per solve.
+//
+// Index space: the permuted space of the BoxedLcp.
+#pragma once
+
+#include <vector>
+
+#include "linalg/incremental_cholesky.h"
+#include "ode_bpp/solver.h"
+#include "pivoting/boxed_lcp.h"
+#include "pivoting/iterate.h"
+
+namespace ode_bpp::pivoting {
+
+class FreeRowsFactor {
+public:
+    /// F = the rows Free in `states` (n entries), factored afresh in increasing index, for lcp
+    /// (which must outlive the factor's use); x_T: the tight rows' values in x. False on breakdown
+    /// (a free row dependent on the others to machine precision).
+    bool reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x);
+
+    /// Tight row i joins F as the factor's last row; false, F unchanged, on breakdown.
+    bool add(int i);
+    /// Free row i leaves F, held at `value` from now on.
+    void remove(int i, double value);
+    /// F in the factor's order.
+    const std::vector<int>& members() const { return members_; }
+
+    /// Eq. 6: x_F = (A + shift I)_FF⁻¹ (b - A_FT x_T)_F with the tight values x_T given to
+    /// reset() and remove(); x's other entries are left as they are.
+    void solve(std::vector<double>& x) const;
+    /// True when w and scales at a solve()'s x (`it`, iterate.h) meet Eq. 6 on F within
+    /// accuracy_limit(tolerance, n); false after many updates have worn the factor.
+    bool accurate(const Iterate& it, double tolerance) const;
+    /// Refactors F afresh and recomputes A_FT x_T (after !accurate()); false on breakdown.
+    bool refresh();
+
+private:
+    void add_column(int i, double factor);  ///< tight_product_ += factor A(:, i), off the diagonal
+
+    const BoxedLcp* lcp_ = nullptr;
+    linalg::IncrementalCholesky factor_;
+    std::vector<int> members_;            ///< F in the factor's order
+    std::vector<int> position_;           ///< position of row i in members_, -1 for a tight row
+    std::vector<double> tight_x_;         ///< x_T, 0 on F
+    std::vector<double> tight_product_;   ///< A x_T without the diagonal: on F, A_FT x_T
+    std::vector<double> column_;
+    std::vector<int> refresh_rows_;
+    mutable std::vector<double> rhs_;
+};
+
+}  // namespace ode_bpp::pivoting

@@ -1,0 +1,167 @@
+// The active-set stage of a fixed-bound solve (pivoting/active_set.h): directly, its answers
+// satisfy the boxed LCP's conditions from any start and it gives back what it was handed when it
+// stops early; through solve(), the captured islands of the slow tail (tests/data/captured), on
+// which block pivoting and the regularization rescue ran out of their 100-step budget, converge
+// and certify without the rescue and without ODE's Dantzig.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ode_bpp/io.h"
+#include "ode_bpp/solver.h"
+#include "pivoting/active_set.h"
+#include "problems/generators.h"
+#include "problems/vectors.h"
+#include "test_io_support.h"
+#include "test_pivoting_support.h"
+
+namespace ode_bpp {
+namespace {
+
+// The three islands single pivots with Murty's rule finished, and one they did not (the leading
+// 250 rows of a 481-row bin island; its README line).
+const char* const kOverBudget[] = {"bin-frozen-over-budget-93.mlcp", "bin-frozen-over-budget-114.mlcp",
+                                   "forwarder-frozen-over-budget-226.mlcp", "bin-frozen-over-budget-250.mlcp"};
+
+Result solve_captured(const std::string& name, bool active_set) {
+    const ReadResult read = read_mlcp((io_test::data_dir() / "captured" / name).string());
+    EXPECT_TRUE(read.ok) << read.error;
+    Options o;  // Bpp, Frozen friction, a budget of 100
+    o.dantzig_fallback = false;
+    o.tuning.single_pivots = active_set;
+    std::vector<double> x(static_cast<std::size_t>(read.file.n));
+    return solve(read.file.view(), o, x.data());
+}
+
+TEST(PivotingActiveSet, FinishesTheCapturedIslandsThatRanOutOfBudget) {
+    for (const char* name : kOverBudget) {
+        const Result r = solve_captured(name, true);
+        EXPECT_EQ(r.status, Status::Converged) << name << ": " << r.message;
+        EXPECT_EQ(r.fallback, Fallback::None) << name;
+        EXPECT_EQ(r.pivoting.rescues, 0) << name;
+        EXPECT_GT(r.pivoting.murty_pivots, 0) << name;
+        EXPECT_LE(r.residuals.scaled_fixed_bound, certification_level(Options{}.tolerance)) << name;
+    }
+}
+
+TEST(PivotingActiveSet, WithoutItTheSameIslandsRunOutOfBudget) {
+    for (const char* name : kOverBudget) EXPECT_EQ(solve_captured(name, false).status, Status::MaxIterations) << name;
+}
+
+// With one plain step before it, the active set answers most of the problem on random boxed
+// MLCPs: the answer is Dantzig's (both solve the same frozen-friction problem exactly).
+TEST(PivotingActiveSet, AgreesWithDantzigWhenItDoesMostOfTheWork) {
+    int used = 0;
+    for (double cond : {1e2, 1e6})
+        for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+            const auto p = problems::random_boxed_mlcp(40, 4, 8, cond, seed);
+            Options o;
+            o.dantzig_fallback = false;
+            o.method = Method::Dantzig;
+            std::vector<double> reference(static_cast<std::size_t>(p.n)), x(static_cast<std::size_t>(p.n));
+            ASSERT_EQ(solve(p, o, reference.data()).status, Status::Converged);
+            for (Method m : {Method::Bpp, Method::BppSky, Method::BppChol}) {
+                o.method = m;
+                o.tuning.rescue_after = 1;
+                o.tuning.dense_island_rows = 0;  // the skyline path, not the small-island one
+                const Result r = solve(p, o, x.data());
+                ASSERT_EQ(r.status, Status::Converged) << to_string(m) << " seed " << seed << ": " << r.message;
+                used += r.pivoting.update_steps > 0;
+                EXPECT_EQ(r.pivoting.downdate_steps + r.pivoting.refactor_steps + r.pivoting.update_steps, r.pivoting.pivots);
+                const double tol = 1e3 * cond * std::numeric_limits<double>::epsilon() * (1 + problems::inf_norm(reference));
+                EXPECT_LT(problems::max_abs_diff(x, reference), tol) << to_string(m) << " cond " << cond << " seed " << seed;
+            }
+        }
+    EXPECT_GT(used, 0);  // the path under test was taken
+}
+
+namespace direct {
+
+using pivoting::LoopOutcome;
+using pivoting::test::DriverLcp;
+
+struct ActiveSetRun {
+    LoopOutcome outcome;
+    std::vector<RowState> states;
+    std::vector<double> x;
+    PivotStats counters;
+};
+
+ActiveSetRun run_active_set(const pivoting::BoxedLcp& lcp, std::vector<double> start, int max_steps) {
+    pivoting::PivotSettings settings;
+    settings.max_pivots = max_steps;
+    pivoting::ActiveSetWorkspace workspace;
+    pivoting::FreeRowsFactor factor;
+    ActiveSetRun run{LoopOutcome::Breakdown, std::vector<RowState>(start.size(), RowState::Free), std::move(start), {}};
+    run.outcome = pivoting::active_set(lcp, settings, run.states, run.x, run.counters, workspace, factor);
+    return run;
+}
+
+/// The largest violation of the boxed LCP's conditions at x, relative to (|A||x| + |b|)_i:
+/// x outside [lo, hi], w = Ax - b nonzero strictly inside, or of the wrong sign at a bound.
+double kkt_violation(const pivoting::BoxedLcp& lcp, const std::vector<double>& x) {
+    std::vector<double> w, scale;
+    lcp.A->multiply(x, 0, w);
+    lcp.A->abs_multiply(x, 0, scale);
+    double worst = 0;
+    for (int i = 0; i < lcp.n(); ++i) {
+        const double s = scale[i] + std::abs(lcp.b[i]);
+        const double wi = w[i] - lcp.b[i];
+        if (x[i] < lcp.lo[i] || x[i] > lcp.hi[i]) return std::numeric_limits<double>::infinity();
+        double v = std::abs(wi);
+        if (x[i] == lcp.lo[i]) v = std::max(0.0, -wi);
+        if (x[i] == lcp.hi[i]) v = std::max(0.0, wi);
+        if (lcp.lo[i] == lcp.hi[i]) v = 0;
+        worst = std::max(worst, v / s);
+    }
+    return worst;
+}
+
+// The box QP has one minimizer, so every start ends at the same x, and it satisfies the
+// conditions to the classification tolerance.
+TEST(PivotingActiveSet, EveryStartEndsAtTheOneSolution) {
+    std::mt19937_64 rng(7);
+    for (double cond : {1e2, 1e6})
+        for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+            const auto p = problems::random_boxed_mlcp(40, 4, 8, cond, seed);
+            const DriverLcp d(p);
+            std::vector<double> first;
+            for (int start = 0; start < 4; ++start) {
+                std::vector<double> x0(static_cast<std::size_t>(p.n), 0.0);
+                if (start > 0) {
+                    std::normal_distribution<double> g(0, start == 3 ? 100 : 1);
+                    for (double& v : x0) v = g(rng);
+                }
+                const ActiveSetRun r = run_active_set(d.lcp, x0, 20 * p.n);
+                ASSERT_EQ(r.outcome, LoopOutcome::Converged) << "cond " << cond << " seed " << seed << " start " << start;
+                EXPECT_LE(kkt_violation(d.lcp, r.x), 10 * Options{}.tolerance) << "seed " << seed << " start " << start;
+                EXPECT_EQ(r.counters.pivots, r.counters.update_steps);
+                if (first.empty()) first = r.x;
+                const double tol = 1e4 * cond * std::numeric_limits<double>::epsilon() * (1 + problems::inf_norm(first));
+                EXPECT_LT(problems::max_abs_diff(r.x, first), tol) << "cond " << cond << " seed " << seed << " start " << start;
+            }
+        }
+}
+
+// Cut short, it hands back the index set and x it was given.
+TEST(PivotingActiveSet, GivesBackItsStartWhenItStopsEarly) {
+    const auto p = problems::random_boxed_mlcp(40, 4, 8, 1e2, 3);
+    const DriverLcp d(p);
+    std::vector<double> x0(static_cast<std::size_t>(p.n), 1e3);
+    const ActiveSetRun r = run_active_set(d.lcp, x0, 1);
+    ASSERT_EQ(r.outcome, LoopOutcome::MaxIterations);
+    EXPECT_EQ(r.x, x0);
+    EXPECT_EQ(r.states, std::vector<RowState>(static_cast<std::size_t>(p.n), RowState::Free));
+    EXPECT_EQ(r.counters.pivots, 1);
+}
+
+}  // namespace direct
+
+}  // namespace
+}  // namespace ode_bpp

@@ -36,12 +36,6 @@ std::pair<double, double> bounds_at(const Problem& p, ConstStrided x, int i) {
     return {p.lo[i], p.hi[i]};
 }
 
-bool is_free(const Problem& p, ConstStrided x, const std::vector<RowState>* states, int i) {
-    if (states != nullptr) return (*states)[i] == RowState::Free;
-    const auto [lo, hi] = bounds_at(p, x, i);
-    return lo < x[i] && x[i] < hi;
-}
-
 /// s_i = scale_i / A_ii in units of x; for a friction row at least |mu_i| s_n of its normal n,
 /// since its bound mu_i |x_n| is known only to that scale (the solver's certificate,
 /// FrictionSet::consistent in pivoting/friction_set.h, uses the same). Without it a friction row whose own
@@ -56,38 +50,62 @@ double row_scale(const Problem& p, Diagonal diag, const std::vector<double>& sca
     return s;
 }
 
-/// The bounds of row i in the fixed-bound problem x implies (Residuals::fixed_bound): +-|x_i| for a
-/// bounded friction row, `bounds` (its effective bounds) for any other row.
-std::pair<double, double> implied_bounds(const Problem& p, ConstStrided x, int i, std::pair<double, double> bounds) {
-    if (p.findex == nullptr || p.findex[i] < 0 || i < p.nub || unbounded_friction_row(p, i)) return bounds;
-    return {-std::abs(x[i]), std::abs(x[i])};
+/// Row i's effective bounds (bounds_at) and the bounds of the fixed-bound problem x implies
+/// (Residuals::fixed_bound: +-|x_i| for a bounded friction row, the effective bounds for any other
+/// row), from one look at its kind: unbounded, boxed, or a friction row.
+struct RowBounds {
+    std::pair<double, double> effective, implied;
+    bool friction = false;  ///< findex[i] >= 0
+};
+
+RowBounds row_bounds(const Problem& p, ConstStrided x, int i) {
+    const int normal = p.findex != nullptr ? p.findex[i] : -1;
+    const std::pair<double, double> unbounded{-kInf, kInf};
+    if (i < p.nub) return {unbounded, unbounded, normal >= 0};
+    if (normal < 0) {
+        const std::pair<double, double> box{p.lo[i], p.hi[i]};
+        return {box, box, false};
+    }
+    const double mu = p.hi[i];
+    if (mu == kInf) return {unbounded, unbounded, true};
+    const double n = x[normal];
+    const double bound = n == 0 ? 0.0 : std::abs(mu * n);
+    const double xi = std::abs(x[i]);
+    return {{-bound, bound}, {-xi, xi}, true};
 }
 
 /// Residuals from w = A x - b and scale = |A||x| + |b|; diag(i) = A_ii.
 template <typename Diagonal>
 Residuals summarize(const Problem& p, Diagonal diag, ConstStrided x, const std::vector<double>& w,
                     const std::vector<double>& scale, const std::vector<RowState>* states) {
-    Residuals r;
-    for (int i = 0; i < p.n; ++i) {
-        const auto bounds = bounds_at(p, x, i);
-        const double step = x[i] - w[i], scaled_step = x[i] - w[i] / diag(i);
-        r.natural = std::max(r.natural, std::abs(x[i] - clamp_to(step, bounds)));
-        const double scaled = std::abs(x[i] - clamp_to(scaled_step, bounds));
-        const auto implied = implied_bounds(p, x, i, bounds);
-        r.fixed_bound = std::max(r.fixed_bound, std::abs(x[i] - clamp_to(step, implied)));
-        const double scaled_fixed = std::abs(x[i] - clamp_to(scaled_step, implied));
+    double natural = 0, fixed_bound = 0, scaled_natural = 0, scaled_fixed_bound = 0, free_rows = 0, friction = 0;
+    for (int i = 0; i < p.n; ++i) {  // (local sums: w, x and the maxima could alias in memory)
+        const RowBounds rb = row_bounds(p, x, i);
+        const double xi = x[i], wi = w[i], di = diag(i);
+        const double step = xi - wi, scaled_step = xi - wi / di;
+        natural = std::max(natural, std::abs(xi - clamp_to(step, rb.effective)));
+        const double scaled = std::abs(xi - clamp_to(scaled_step, rb.effective));
+        fixed_bound = std::max(fixed_bound, std::abs(xi - clamp_to(step, rb.implied)));
+        const double scaled_fixed = std::abs(xi - clamp_to(scaled_step, rb.implied));
         if (scaled > 0 || scaled_fixed > 0) {
             const double s_i = row_scale(p, diag, scale, i);
-            if (scaled > 0) r.scaled_natural = std::max(r.scaled_natural, scaled / s_i);
-            if (scaled_fixed > 0) r.scaled_fixed_bound = std::max(r.scaled_fixed_bound, scaled_fixed / s_i);
+            if (scaled > 0) scaled_natural = std::max(scaled_natural, scaled / s_i);
+            if (scaled_fixed > 0) scaled_fixed_bound = std::max(scaled_fixed_bound, scaled_fixed / s_i);
         }
-        if (is_free(p, x, states, i)) r.free = std::max(r.free, std::abs(w[i]));
-        if (p.findex != nullptr && p.findex[i] >= 0)
-            r.friction = std::max(r.friction, std::abs(x[i]) - bounds.second);
+        const bool free = states != nullptr ? (*states)[i] == RowState::Free
+                                            : rb.effective.first < xi && xi < rb.effective.second;
+        if (free) free_rows = std::max(free_rows, std::abs(wi));
+        if (rb.friction) friction = std::max(friction, std::abs(xi) - rb.effective.second);
     }
+    Residuals r;
+    r.natural = natural;
+    r.scaled_natural = scaled_natural;
+    r.scaled_fixed_bound = scaled_fixed_bound;
+    r.free = free_rows;
+    r.friction = friction;
     const double b_scale = std::max(1.0, inf_norm(p.b, p.n));
-    r.relative_natural = r.natural / b_scale;
-    r.fixed_bound /= b_scale;
+    r.relative_natural = natural / b_scale;
+    r.fixed_bound = fixed_bound / b_scale;
     return r;
 }
 
@@ -98,14 +116,14 @@ struct DenseDiagonal {
 };
 
 /// w = A x - b and scale = |A||x| + |b| from the dense form's lower triangle, each entry used for
-/// both of its rows. O(n^2), no allocation beyond w and scale.
+/// both of its rows, each row summed as the compressed rows' residual_vectors sums it (diagonal,
+/// off-diagonal terms by increasing column, then b). O(n^2), no allocation beyond w and scale.
 void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
     w.resize(static_cast<std::size_t>(p.n));
     scale.resize(static_cast<std::size_t>(p.n));
     for (int i = 0; i < p.n; ++i) {
-        const double d = DenseDiagonal{p}(i) * x[i];
-        w[i] = d - p.b[i];
-        scale[i] = std::abs(d) + std::abs(p.b[i]);
+        w[i] = DenseDiagonal{p}(i) * x[i];
+        scale[i] = std::abs(w[i]);
     }
     for (int i = 1; i < p.n; ++i) {
         const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
@@ -116,6 +134,10 @@ void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double
             w[j] += to_j;
             scale[j] += std::abs(to_j);
         }
+    }
+    for (int i = 0; i < p.n; ++i) {
+        w[i] -= p.b[i];
+        scale[i] += std::abs(p.b[i]);
     }
 }
 
@@ -129,16 +151,17 @@ void residual_vectors(const Problem& p, const linalg::SymmetricRows& A, ConstStr
                       std::vector<double>& scale) {
     w.assign(static_cast<std::size_t>(p.n), 0.0);
     scale.assign(static_cast<std::size_t>(p.n), 0.0);
-    for (int i = 0; i < p.n; ++i) {
-        double wi = A.diag(i) * x[i] - p.b[i];
-        double si = std::abs(A.diag(i) * x[i]) + std::abs(p.b[i]);
+    for (int i = 0; i < p.n; ++i) {  // (A x)_r - b_r, summed as the pivoting loop sums its w
+        const int r = A.built_row(i);
+        double wi = A.diag(i) * x[r];
+        double si = std::abs(wi);
         for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
-            const double term = A.val(k) * x[A.col(k)];
+            const double term = A.val(k) * x[A.built_row(A.col(k))];
             wi += term;
             si += std::abs(term);
         }
-        w[i] = wi;
-        scale[i] = si;
+        w[r] = wi - p.b[r];
+        scale[r] = si + std::abs(p.b[r]);
     }
 }
 
@@ -157,7 +180,16 @@ Residuals compute_residuals(const Problem& p, ConstStrided x, const std::vector<
 Residuals compute_residuals(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x,
                             const std::vector<RowState>* states, ResidualBuffers& buffers) {
     residual_vectors(p, A, x, buffers.w, buffers.scale);
-    return summarize(p, [&A](int i) { return A.diag(i); }, x, buffers.w, buffers.scale, states);
+    return residuals_from(p, A, x, states, buffers);
+}
+
+Residuals residuals_from(const Problem& p, const linalg::SymmetricRows& A, ConstStrided x,
+                         const std::vector<RowState>* states, ResidualBuffers& vectors) {
+    if (A.order().empty()) return summarize(p, [&A](int i) { return A.diag(i); }, x, vectors.w, vectors.scale, states);
+    vectors.diagonal.resize(static_cast<std::size_t>(p.n));
+    for (int i = 0; i < p.n; ++i) vectors.diagonal[A.built_row(i)] = A.diag(i);
+    const std::vector<double>& diagonal = vectors.diagonal;
+    return summarize(p, [&diagonal](int i) { return diagonal[i]; }, x, vectors.w, vectors.scale, states);
 }
 
 Residuals dense_residuals_from(const Problem& p, ConstStrided x, const std::vector<double>& w,

@@ -13,12 +13,20 @@ namespace ode_bpp {
 /// each; kept by the caller so that their capacity outlives a solve.
 struct ResidualBuffers {
     std::vector<double> w, scale;
+    std::vector<double> diagonal;  ///< A_ii in the problem's order, where A is stored in another
 };
 
-/// As compute_residuals(problem, x, states); A: linalg::SymmetricRows(problem, {}) (original order).
+/// As compute_residuals(problem, x, states); A: linalg::SymmetricRows(problem, {}) or
+/// problem.sparse, stored in any order (SymmetricRows::order).
 /// buffers: scratch, left holding w and scale of x.
 Residuals compute_residuals(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x,
                             const std::vector<RowState>* states, ResidualBuffers& buffers);
+
+/// As compute_residuals(problem, A, x, states, buffers) when vectors already hold w and scale of
+/// x as residual_vectors sums them (a pivoting loop's at its answer, bpp_driver.h): the same
+/// values, without the pass over A. O(n).
+Residuals residuals_from(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x,
+                         const std::vector<RowState>* states, ResidualBuffers& vectors);
 
 /// The residuals of x on a problem in the dense form (Problem::A) from its w = A x - b and row
 /// scales as residual_vectors computes them (e.g. kept by a pivoting loop at its answer): the
@@ -26,7 +34,10 @@ Residuals compute_residuals(const Problem& problem, const linalg::SymmetricRows&
 Residuals dense_residuals_from(const Problem& problem, ConstStrided x, const std::vector<double>& w,
                                const std::vector<double>& scale, const std::vector<RowState>* states);
 
-/// As residual_vectors(problem, x, w, scale), from A = linalg::SymmetricRows(problem, {}).
+/// As residual_vectors(problem, x, w, scale), from A = linalg::SymmetricRows(problem, {}) or
+/// problem.sparse (stored in any order; w and scale come in the problem's); each
+/// row summed as SymmetricRows::multiply_with_scale sums it, then b: the pivoting loop's w and
+/// scales (pivoting/iterate.h) at the same x, bit for bit, in any symmetric permutation of A.
 void residual_vectors(const Problem& problem, const linalg::SymmetricRows& A, ConstStrided x, std::vector<double>& w,
                       std::vector<double>& scale);
 

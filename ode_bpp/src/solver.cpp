@@ -117,22 +117,29 @@ Result run_pgs(const Problem& p, const linalg::SymmetricRows& A, const Options& 
     return r;
 }
 
+/// at_answer: out, w and the row scales at x when the method computed them at its answer
+/// (solve_bpp), else empty.
+/// A: the problem's, stored in any order (the BPP methods take it as it is, the others in the
+/// problem's order: scratch holds it then).
 Result dispatch(const Problem& p, const linalg::SymmetricRows& A, const Options& o, const Start& start,
-                std::vector<double>& x, pivoting::BppWorkspace& bpp) {
-    if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, start, x, bpp);
-    if (o.method == Method::Dantzig) return run_dantzig(p, A, x);
-    return run_pgs(p, A, o, x);
+                std::vector<double>& x, pivoting::BppWorkspace& bpp, ResidualBuffers& at_answer,
+                linalg::SymmetricRows& scratch) {
+    at_answer.w.clear();
+    if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, start, x, bpp, at_answer);
+    if (o.method == Method::Dantzig) return run_dantzig(p, A.in_built_order(scratch), x);
+    return run_pgs(p, A.in_built_order(scratch), o, x);
 }
 
-/// Steps 3-4 of the chain above.
-void apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Options& o, Result& r,
-                     std::vector<double>& x) {
+/// Steps 3-4 of the chain above; true when x was replaced. A: stored in any order (scratch holds
+/// it in the problem's for Dantzig).
+bool apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Options& o, Result& r,
+                     std::vector<double>& x, linalg::SymmetricRows& scratch) {
     const bool failed = r.status == Status::NotSpd || !all_finite(x);
-    if (!failed) return;
+    if (!failed) return false;
     std::string reason = r.status == Status::NotSpd ? r.message : "the answer was not finite";
     if (o.dantzig_fallback && o.method != Method::Dantzig) {
         std::vector<double> xd;
-        const baselines::DantzigOutcome outcome = baselines::solve_dantzig(p, A, xd);
+        const baselines::DantzigOutcome outcome = baselines::solve_dantzig(p, A.in_built_order(scratch), xd);
         if (outcome == baselines::DantzigOutcome::Solved && all_finite(xd)) {
             x = std::move(xd);
             r.status = Status::FallbackUsed;
@@ -140,7 +147,7 @@ void apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Opt
             r.message = reason + "; answered by ODE's Dantzig";
             r.states = states_of(p, x);
             r.tight = count_tight(r.states);
-            return;
+            return true;
         }
         reason += outcome == baselines::DantzigOutcome::Unavailable ? "; no Dantzig to fall back on (ode_bpp_core alone)"
                                                                     : "; ODE's Dantzig failed too";
@@ -150,6 +157,7 @@ void apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Opt
     r.message = reason + "; x set to zero";
     r.states.assign(static_cast<std::size_t>(p.n), RowState::Free);
     r.tight = 0;
+    return true;
 }
 
 /// The certifying value of a pair of residuals of one answer: the smaller. The scaled residual
@@ -194,13 +202,18 @@ void agree_with_residual(const Options& o, Result& r) {
     }
 }
 
+/// The residuals of x: from w and the row scales in buffers when they are x's (at_x, as the
+/// method left them: the loop's last w is the answer's), else from a pass over A.
 void fill_residuals(const Problem& p, const linalg::SymmetricRows& A, Result& r, const std::vector<double>& x,
-                    ResidualBuffers& buffers) {
-    r.residuals = compute_residuals(p, A, ConstStrided{x.data(), 1}, r.states.empty() ? nullptr : &r.states, buffers);
+                    ResidualBuffers& buffers, bool at_x) {
+    const std::vector<RowState>* states = r.states.empty() ? nullptr : &r.states;
+    if (at_x) r.residuals = residuals_from(p, A, ConstStrided{x.data(), 1}, states, buffers);
+    else r.residuals = compute_residuals(p, A, ConstStrided{x.data(), 1}, states, buffers);
 }
 
-/// A as compressed rows in original order: the caller's sparse A as it is, or the dense lower
-/// triangle read once (the only O(n^2) pass of a dense problem) into rows (storage reused).
+/// A as compressed rows: the caller's sparse A as it is (in the order it is stored in, which may
+/// be the solver's: ode/island_view.h), or the dense lower triangle read once (the only O(n^2)
+/// pass of a dense problem) into rows (storage reused).
 const linalg::SymmetricRows& rows_of(const Problem& problem, linalg::SymmetricRows& rows) {
     if (problem.sparse != nullptr) return *problem.sparse;
     rows.assign(problem, {});
@@ -320,12 +333,13 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
     Result small_attempt;
     if (small && solve_small(problem, options, start, parts.small_island, answer, small_attempt, x)) return small_attempt;
     if (A == nullptr) A = &rows_of(problem, parts.rows);
-    Result r = dispatch(problem, *A, options, start, answer, parts.bpp);
+    Result r = dispatch(problem, *A, options, start, answer, parts.bpp, parts.residuals, parts.rows);
     r.method = options.method;
     r.friction = options.friction;
     r.pivoting.pivots += small_attempt.pivoting.pivots;  // the steps of a small-island attempt that did not finish
-    apply_fallbacks(problem, *A, options, r, answer);
-    fill_residuals(problem, *A, r, answer, parts.residuals);
+    const bool replaced = apply_fallbacks(problem, *A, options, r, answer, parts.rows);
+    const bool vectors_at_answer = !replaced && parts.residuals.w.size() == answer.size();
+    fill_residuals(problem, *A, r, answer, parts.residuals, vectors_at_answer);
     agree_with_residual(options, r);
     if (!is_bpp(options.method)) r.factor_error = std::numeric_limits<double>::quiet_NaN();
     if (r.status != Status::Converged && r.message.empty()) r.message = to_string(r.status);

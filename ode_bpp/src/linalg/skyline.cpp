@@ -73,6 +73,14 @@ void SkylineMatrix::reset(const SkylineShape& shape) {
     values_.assign(static_cast<std::size_t>(shape_.size()), 0.0);
 }
 
+void SkylineMatrix::reshape(const SkylineShape& shape) {
+    assert(shape.valid());
+    shape_.n = shape.n;
+    shape_.sky = shape.sky;
+    shape_.colptr = shape.colptr;
+    values_.resize(static_cast<std::size_t>(shape_.size()));
+}
+
 void SkylineMatrix::copy_tail_from(const SkylineMatrix& other, int k0) {
     assert(other.shape_.colptr == shape_.colptr);
     if (k0 >= n()) return;

@@ -43,6 +43,9 @@ public:
     /// The zero matrix of this shape, reusing this object's storage (no allocation once it has
     /// held a shape as large).
     void reset(const SkylineShape& shape);
+    /// This shape with its values left unspecified (storage reused, nothing written): for a
+    /// matrix that copy_tail_from(other, 0) or the like overwrites before anything reads it.
+    void reshape(const SkylineShape& shape);
 
     int n() const { return shape_.n; }
     const SkylineShape& shape() const { return shape_; }

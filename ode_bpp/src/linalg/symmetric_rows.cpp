@@ -16,8 +16,18 @@ SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) { a
 
 void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
     if (p.sparse != nullptr) {
-        if (perm.empty()) *this = *p.sparse;
-        else p.sparse->permute_into(perm, *this);
+        const std::vector<int>& stored = p.sparse->order();
+        if (perm.empty() && stored.empty()) {
+            *this = *p.sparse;
+            return;
+        }
+        std::vector<int>& from_stored = build_.count;  // perm in the stored order: stored^-1 o perm
+        from_stored.resize(static_cast<std::size_t>(p.n));
+        std::vector<int>& to_stored = build_.next;
+        to_stored.resize(static_cast<std::size_t>(p.n));
+        for (int i = 0; i < p.n; ++i) to_stored[p.sparse->built_row(i)] = i;
+        for (int i = 0; i < p.n; ++i) from_stored[i] = to_stored[perm.empty() ? i : perm[i]];
+        p.sparse->permute_into(from_stored, *this);
         return;
     }
     std::vector<int>& to_new = build_.to_new;
@@ -42,10 +52,13 @@ void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
         std::sort(lower.begin(), lower.end(),
                   [](const LowerEntry& x, const LowerEntry& y) { return x.row != y.row ? x.row < y.row : x.col < y.col; });
     assign_lower(diagonal, lower);
+    order_ = perm;
 }
 
 void SymmetricRows::assign_lower(std::vector<double>& diagonal, const std::vector<LowerEntry>& lower) {
     n_ = static_cast<int>(diagonal.size());
+    order_.clear();
+    profile_known_ = false;
     diag_.swap(diagonal);
     std::vector<int>&count = build_.count, &next = build_.next;
     count.assign(static_cast<std::size_t>(n_), 0);
@@ -68,13 +81,57 @@ void SymmetricRows::assign_lower(std::vector<double>& diagonal, const std::vecto
     }
 }
 
-void SymmetricRows::to_dense_lower(double* A, int lda) const {
-    for (int i = 0; i < n_; ++i) {
-        double* row = A + static_cast<std::ptrdiff_t>(i) * lda;
-        std::fill(row, row + i, 0.0);
-        row[i] = diag_[i];
-        for (int k = rowptr_[i]; k < rowptr_[i + 1] && col_[k] < i; ++k) row[col_[k]] = val_[k];
+void SymmetricRows::assign_lower(const std::vector<double>& diagonal, const std::vector<LowerEntry>& lower,
+                                 const std::vector<int>& order) {
+    n_ = static_cast<int>(diagonal.size());
+    order_ = order;
+    std::vector<int>&to_new = build_.to_new, &count = build_.count, &next = build_.next;
+    to_new.resize(order.size());
+    for (int i = 0; i < n_; ++i) to_new[order[i]] = i;
+    diag_.resize(diagonal.size());
+    count.assign(static_cast<std::size_t>(n_), 0);
+    for (int i = 0; i < n_; ++i) diag_[i] = diagonal[order[i]];
+    profile_.resize(order.size());
+    std::iota(profile_.begin(), profile_.end(), 0);
+    for (const LowerEntry& e : lower) {
+        const int r = to_new[e.row], c = to_new[e.col];
+        ++count[r];
+        ++count[c];
+        if (c < r) profile_[r] = std::min(profile_[r], c);
+        else profile_[c] = std::min(profile_[c], r);
     }
+    profile_known_ = true;
+    rowptr_.assign(static_cast<std::size_t>(n_) + 1, 0);
+    for (int i = 0; i < n_; ++i) rowptr_[i + 1] = rowptr_[i] + count[i];
+    col_.resize(static_cast<std::size_t>(rowptr_[n_]));
+    val_.resize(col_.size());
+    next.assign(rowptr_.begin(), rowptr_.end() - 1);
+    // as in the unordered assign_lower, each row fills with increasing built columns: the order
+    // in which permute_into would have copied it
+    for (const LowerEntry& e : lower) {
+        const int r = to_new[e.row], c = to_new[e.col];
+        col_[next[r]] = c;
+        val_[next[r]++] = e.value;
+        col_[next[c]] = r;
+        val_[next[c]++] = e.value;
+    }
+}
+
+void SymmetricRows::to_dense_lower(double* A, int lda) const {
+    for (int i = 0; i < n_; ++i) std::fill(A + static_cast<std::ptrdiff_t>(i) * lda, A + static_cast<std::ptrdiff_t>(i) * lda + i, 0.0);
+    for (int i = 0; i < n_; ++i) {
+        const int r = built_row(i);
+        double* row = A + static_cast<std::ptrdiff_t>(r) * lda;
+        row[r] = diag_[i];
+        for (int k = rowptr_[i]; k < rowptr_[i + 1]; ++k)
+            if (built_row(col_[k]) < r) row[built_row(col_[k])] = val_[k];
+    }
+}
+
+const SymmetricRows& SymmetricRows::in_built_order(SymmetricRows& out) const {
+    if (order_.empty()) return *this;
+    permute_into(inverse_permutation(order_), out);
+    return out;
 }
 
 SymmetricRows SymmetricRows::permuted(const std::vector<int>& perm) const {
@@ -88,6 +145,14 @@ void SymmetricRows::permute_into(const std::vector<int>& perm, SymmetricRows& ou
     to_new.resize(perm.size());
     for (std::size_t i = 0; i < perm.size(); ++i) to_new[perm[i]] = static_cast<int>(i);
     out.n_ = n_;
+    out.profile_known_ = false;
+    out.order_.resize(perm.size());
+    bool identity = true;
+    for (std::size_t i = 0; i < perm.size(); ++i) {
+        out.order_[i] = built_row(perm[i]);
+        identity = identity && out.order_[i] == static_cast<int>(i);
+    }
+    if (identity) out.order_.clear();
     out.diag_.resize(diag_.size());
     out.rowptr_.assign(rowptr_.size(), 0);
     for (int i = 0; i < n_; ++i) {
@@ -148,6 +213,10 @@ std::vector<int> SymmetricRows::row_profile() const {
 }
 
 void SymmetricRows::row_profile(std::vector<int>& first) const {
+    if (profile_known_) {
+        first = profile_;
+        return;
+    }
     first.resize(static_cast<std::size_t>(n_));
     for (int i = 0; i < n_; ++i) {
         first[i] = i;

@@ -33,18 +33,35 @@ public:
     /// row with increasing columns (so every stored row is sorted by column). O(n + entries).
     /// diagonal is swapped in: the caller gets this object's former storage back to reuse.
     void assign_lower(std::vector<double>& diagonal, const std::vector<LowerEntry>& lower);
+    /// The same matrix stored in the symmetric order `order` (order[new] = old, n entries, a
+    /// permutation): what assign_lower and then permute_into(order) give, entry for entry and in
+    /// the same order within each row, in one pass. O(n + entries).
+    void assign_lower(const std::vector<double>& diagonal, const std::vector<LowerEntry>& lower,
+                      const std::vector<int>& order);
     /// The same matrix under a further permutation: result(i,j) = this(perm[i], perm[j]).
     SymmetricRows permuted(const std::vector<int>& perm) const;
-    /// The same, written into out (its storage reused); out must not be *this.
+    /// The same, written into out (its storage reused); out must not be *this. Each row keeps
+    /// its entries in their order here (not sorted by the new columns).
     void permute_into(const std::vector<int>& perm, SymmetricRows& out) const;
+    /// This matrix in the order it was built in (order() undone) into out (storage reused), or
+    /// *this itself when it is stored in that order already.
+    const SymmetricRows& in_built_order(SymmetricRows& out) const;
+
+    /// The order of the rows: stored row i is row order()[i] of the matrix as built (empty:
+    /// the identity). Set by the ordered assign_lower and carried along by permute_into, so that
+    /// a problem's compressed rows may come in the solver's order (Problem::sparse).
+    const std::vector<int>& order() const { return order_; }
+    /// order()[i], or i when the order is the identity.
+    int built_row(int i) const { return order_.empty() ? i : order_[i]; }
 
     int n() const { return n_; }
     /// Stored off-diagonal entries (both triangles).
     int off_diagonal_entries() const { return rowptr_.empty() ? 0 : rowptr_[n_]; }
     double diag(int i) const { return diag_[i]; }
     double max_diag() const;
-    /// Off-diagonal entries of row i: positions rowptr(i) .. rowptr(i+1)-1 of col()/val(),
-    /// columns increasing.
+    /// Off-diagonal entries of row i: positions rowptr(i) .. rowptr(i+1)-1 of col()/val(). By
+    /// increasing column after assign and assign_lower; by increasing built column
+    /// (built_row(col(k))) after the ordered assign_lower; permute_into keeps each row's order.
     int row_begin(int i) const { return rowptr_[i]; }
     int row_end(int i) const { return rowptr_[i + 1]; }
     int col(int k) const { return col_[k]; }
@@ -57,14 +74,16 @@ public:
     /// y = (Ap + shift I) x and scale = |Ap + shift I| |x| in one pass over the entries (the
     /// pivoting loop's w and tolerance scale of Eq. 5), n entries each.
     void multiply_with_scale(const double* x, double shift, double* y, double* scale) const;
-    /// Row profile of the lower triangle: first[i] = min({i} U {j < i : Ap(i,j) != 0}).
+    /// Row profile of the lower triangle, stored order: first[i] = min({i} U {j < i : Ap(i,j) != 0}).
     std::vector<int> row_profile() const;
-    /// The same into first (n entries, its storage reused).
+    /// The same into first (n entries, its storage reused). O(n) after the ordered assign_lower,
+    /// which finds it while it counts; O(n + nnz) otherwise.
     void row_profile(std::vector<int>& first) const;
     /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.
     std::vector<int> row_profile_under(const std::vector<int>& perm) const;
     /// The lower triangle, diagonal included, as a dense row-major n x n array with row stride
-    /// lda (the upper triangle is left as it is). O(n^2): for ODE's Dantzig and file capture.
+    /// lda (the upper triangle is left as it is), in the order the matrix was built in (order()
+    /// undone). O(n^2): for ODE's Dantzig and file capture.
     void to_dense_lower(double* A, int lda) const;
 
 private:
@@ -82,6 +101,9 @@ private:
     };
 
     int n_ = 0;
+    std::vector<int> order_;
+    std::vector<int> profile_;    ///< row_profile(), when profile_known_ (the ordered assign_lower finds it)
+    bool profile_known_ = false;
     std::vector<double> diag_;
     std::vector<int> rowptr_, col_;
     std::vector<double> val_;

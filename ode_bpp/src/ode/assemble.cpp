@@ -40,16 +40,25 @@ const dReal* side_row(const dReal* base, int width, const dMLCPJoint& joint, int
     return base + static_cast<std::ptrdiff_t>(index) * width;
 }
 
+/// The six entries of a row of J M^-1 that meet J's six for one body (ODE pads each half to four).
+struct JinvMEntries {
+    double m0, m1, m2, m4, m5, m6;
+};
+
+JinvMEntries entries_of(const dReal* jinvm) { return {jinvm[0], jinvm[1], jinvm[2], jinvm[4], jinvm[5], jinvm[6]}; }
+
 /// JinvM_i . J_j over one body, summed as ODE's MultiplyAddJinvMxJToA does.
-double body_term(const dReal* jinvm, const dReal* j) {
-    double sum = jinvm[0] * j[0];
-    sum += jinvm[1] * j[1];
-    sum += jinvm[2] * j[2];
-    sum += jinvm[4] * j[3];
-    sum += jinvm[5] * j[4];
-    sum += jinvm[6] * j[5];
+double body_term(const JinvMEntries& m, const dReal* j) {
+    double sum = m.m0 * j[0];
+    sum += m.m1 * j[1];
+    sum += m.m2 * j[2];
+    sum += m.m4 * j[3];
+    sum += m.m5 * j[4];
+    sum += m.m6 * j[5];
     return sum;
 }
+
+double body_term(const dReal* jinvm, const dReal* j) { return body_term(entries_of(jinvm), j); }
 
 SharedSides shared_sides(const dMLCPJoint& p, const dMLCPJoint& q) {
     SharedSides shared;
@@ -70,6 +79,12 @@ SharedSides shared_sides(const dMLCPJoint& p, const dMLCPJoint& q) {
 template <typename Emit>
 void row_against_joint(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j_end,
                        const SharedSides& shared, double start, Emit emit) {
+    if (shared.count == 1) {  // most pairs share one body: row i's entries held in registers
+        const JinvMEntries m = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[0], i));
+        const dReal* jq = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[0], q.row);
+        for (int j = q.row; j < j_end; ++j, jq += dMLCP_J_ROW) emit(j, start + body_term(m, jq));
+        return;
+    }
     const dReal* jinvm[2] = {nullptr, nullptr};
     const dReal* jq[2] = {nullptr, nullptr};
     for (int k = 0; k < shared.count; ++k) {
@@ -132,7 +147,8 @@ bool has_sparse_form(const dMLCP& p) {
            p.m > 0;
 }
 
-void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers) {
+void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers,
+                   const std::vector<int>& order) {
     std::vector<linalg::LowerEntry>& lower = buffers.lower;
     lower.clear();
     std::vector<double>& diagonal = buffers.diagonal;
@@ -141,7 +157,8 @@ void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuff
         if (j == i) diagonal[i] = a;
         else if (a != 0) lower.push_back({i, j, a});  // exact zeros are not stored, as from the dense A
     });
-    out.assign_lower(diagonal, lower);
+    if (order.empty()) out.assign_lower(diagonal, lower);
+    else out.assign_lower(diagonal, lower, order);
 }
 
 void assemble_dense_lower(const dMLCP& island, double* A, int lda, AssemblyBuffers& /*buffers: not needed*/) {

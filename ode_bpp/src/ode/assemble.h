@@ -45,8 +45,11 @@ bool has_sparse_form(const dMLCP& island);
 /// (lower entry (i,j), i > j: row i's JinvM against row j's J, body[0] of row i's joint first,
 /// the diagonal starting from cfm_i), so the rows equal those read from ODE's dense A bit for bit
 /// and both forms give one trajectory. Exact zeros are not stored, as from the dense A.
-/// Island: has_sparse_form.
-void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers);
+/// Island: has_sparse_form. order: empty, or a permutation of the island's rows (order[new] =
+/// old) to store A in (linalg::SymmetricRows::order), the one the solver will factor in, so that
+/// it need not permute A again (the same rows, entry for entry).
+void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers,
+                   const std::vector<int>& order = {});
 
 /// The same entries, summed the same way, into a dense lower triangle: A[i * lda + j] for j <= i
 /// (output; the strict upper triangle is not written), lda >= island.m. O(m^2) to clear it, then

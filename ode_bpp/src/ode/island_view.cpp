@@ -1,10 +1,25 @@
 #include "ode/island_view.h"
 
+#include <algorithm>
+
 #include "ode/assemble.h"
+#include "ordering/order_rows.h"
 
 namespace ode_bpp::ode {
 
-Problem IslandView::of(const dMLCP& p, bool dense_lower) {
+namespace {
+
+const std::vector<int> kBuiltOrder;  ///< the island's own row order
+
+/// True when order is a permutation of 0 .. n-1 other than the identity.
+bool is_reordering(const std::vector<int>& order, int n) {
+    return !order.empty() && ordering::is_permutation(order, n) &&
+           !std::is_sorted(order.begin(), order.end());
+}
+
+}  // namespace
+
+Problem IslandView::of(const dMLCP& p, bool dense_lower, const std::vector<int>& order) {
     Problem q;
     q.n = p.m;
     q.A = p.A;
@@ -15,7 +30,7 @@ Problem IslandView::of(const dMLCP& p, bool dense_lower) {
         q.A = dense_.data();
         q.lda = p.m;
     } else if (has_sparse_form(p)) {
-        assemble_rows(p, assembled_, assembly_);
+        assemble_rows(p, assembled_, assembly_, is_reordering(order, p.m) ? order : kBuiltOrder);
         q.sparse = &assembled_;
     }
     q.b = ConstStrided{p.pairsbx, 2};

@@ -24,7 +24,10 @@ public:
     /// into both). An island in the sparse form is assembled (ode/assemble.h): into compressed
     /// rows, O(entries of A); or, with dense_lower, into a dense lower triangle for the
     /// small-island path (pivoting/small_island.h), O(m^2). O(rows) otherwise.
-    Problem of(const dMLCP& island, bool dense_lower = false);
+    /// order: empty, or the row order the solver will factor in (Start::ordering): compressed
+    /// rows are stored in it (linalg::SymmetricRows::order) when it is a permutation of the
+    /// island's rows other than the identity.
+    Problem of(const dMLCP& island, bool dense_lower = false, const std::vector<int>& order = {});
 
 private:
     std::vector<int> block_row_, block_body_;

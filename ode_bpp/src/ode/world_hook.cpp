@@ -143,7 +143,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
         }
     }
     if (!warm) start.states.clear();
-    const Problem q = scratch.view.of(*problem, small);
+    const Problem q = scratch.view.of(*problem, small, start.ordering);
 
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
     Result r = solve(q, options, Strided{problem->pairsbx + 1, 2}, start, scratch.workspace);

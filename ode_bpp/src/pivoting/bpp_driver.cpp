@@ -35,6 +35,7 @@ bool is_identity(const std::vector<int>& perm) {
 struct PermutedProblem {
     std::vector<int> perm;
     linalg::SymmetricRows permuted_A;  ///< A in the solver's order, unless that is the caller's
+    linalg::SymmetricRows original_A;  ///< A in the problem's order, where the caller's is another
     const linalg::SymmetricRows* A = nullptr;
     BoxedLcp lcp;
     FrictionSet friction;
@@ -47,10 +48,18 @@ Method strategy_of(const Problem& p, const Options& o) {
 }
 
 /// The symmetric permutation to factor in: the given one where the strategy orders and it is
-/// valid (the hook passes the previous step's), else ordering/ordering_choice.h's.
-void order(const Problem& p, const linalg::SymmetricRows& A, const Options& o, const Start& start, Method strategy,
-           PermutedProblem& q) {
-    const bool given = (strategy == Method::Bpp || strategy == Method::BppSky) && ordering::is_permutation(start.ordering, p.n);
+/// valid (the hook passes the previous step's), else ordering/ordering_choice.h's. A stored in
+/// that permutation already (ode/island_view.h assembles it so) is taken as it is.
+void order(const Problem& p, const linalg::SymmetricRows& stored_A, const Options& o, const Start& start,
+           Method strategy, PermutedProblem& q) {
+    const bool orders = strategy == Method::Bpp || strategy == Method::BppSky;
+    if (orders && !stored_A.order().empty() && stored_A.order() == start.ordering) {  // a permutation
+        q.perm = start.ordering;
+        q.A = &stored_A;
+        return;
+    }
+    const bool given = orders && ordering::is_permutation(start.ordering, p.n);
+    const linalg::SymmetricRows& A = stored_A.in_built_order(q.original_A);
     static const std::vector<RowState> kNoHint;
     q.perm = given ? start.ordering
                    : ordering::choose_ordering(strategy, p, A, o.tuning.order_tight_last ? start.states : kNoHint);
@@ -118,6 +127,20 @@ Result finish(PolicyOutcome outcome, const FixedBoundSolver& fixed, const PivotC
     return r;
 }
 
+/// The loop's w and scales at the answer xp (permuted space), in the caller's order; empty when
+/// the loop did not end at xp (pivot_loop.h, converged_iterate).
+void vectors_at_answer(LoopWorkspace& loop, const std::vector<int>& perm, const std::vector<double>& xp,
+                       ResidualBuffers& out) {
+    const Iterate* it = converged_iterate(loop, xp);
+    if (it == nullptr) return;
+    out.w.resize(xp.size());
+    out.scale.resize(xp.size());
+    for (std::size_t i = 0; i < xp.size(); ++i) {
+        out.w[perm[i]] = it->w[i];
+        out.scale[perm[i]] = it->scale[i];
+    }
+}
+
 std::vector<char> tight_set(const std::vector<RowState>& states) {
     std::vector<char> tight(states.size());
     for (std::size_t i = 0; i < states.size(); ++i) tight[i] = states[i] != RowState::Free;
@@ -135,7 +158,9 @@ struct BppBuffers {
 template class KeptBuffers<BppBuffers>;
 
 Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, const Start& start,
-                 std::vector<double>& x, BppWorkspace& workspace) {
+                 std::vector<double>& x, BppWorkspace& workspace, ResidualBuffers& at_answer) {
+    at_answer.w.clear();
+    at_answer.scale.clear();
     const Method strategy = strategy_of(problem, options);
     PermutedProblem& q = workspace.contents().problem;
     order(problem, A, options, start, strategy, q);
@@ -164,6 +189,7 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     }
     xp.resize(static_cast<std::size_t>(problem.n), 0.0);
     Result r = finish(outcome, fixed, counters, q, states, xp, x);
+    if (outcome != PolicyOutcome::NotSpd) vectors_at_answer(workspace.contents().fixed_bound.loop, q.perm, xp, at_answer);
     r.status = status_of(outcome, fixed.shift());
     r.message = message_of(outcome, fixed.shift(), options, r.pivoting.friction_rounds, note);
     if (options.compute_factor_error && outcome != PolicyOutcome::NotSpd) r.factor_error = q.solver->factor_error(tight_set(states));

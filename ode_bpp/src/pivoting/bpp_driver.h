@@ -9,6 +9,7 @@
 #include "ode_bpp/solver.h"
 #include "linalg/symmetric_rows.h"
 #include "pivoting/kept_buffers.h"
+#include "residuals.h"
 
 namespace ode_bpp::pivoting {
 
@@ -20,11 +21,15 @@ using BppWorkspace = KeptBuffers<BppBuffers>;
 extern template class KeptBuffers<BppBuffers>;  // instantiated where BppBuffers is defined
 
 /// Solves a validated problem with options.method in {BppChol, BppDown, BppSky, Bpp}.
-/// A: linalg::SymmetricRows(problem, {}), the problem's matrix in original order.
+/// A: linalg::SymmetricRows(problem, {}) or problem.sparse, the problem's matrix, stored in any
+/// order (SymmetricRows::order; stored in the order the solver factors in, it is not copied).
 /// x: out, n entries, original space (zero when the status is NotSpd).
 /// Fills status, message, fallback ("regularized" or empty), the counters, tight, states
 /// (original space) and factor_error; leaves the residual fields to the caller.
+/// at_answer: out, w = A x - b and the row scales |A||x| + |b| at x (original space, each row
+/// summed as residual_vectors sums it) when x is the pivoting loop's converged iterate on the
+/// unshifted problem, whose w the loop has computed already; empty otherwise.
 Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, const Start& start,
-                 std::vector<double>& x, BppWorkspace& workspace);
+                 std::vector<double>& x, BppWorkspace& workspace, ResidualBuffers& at_answer);
 
 }  // namespace ode_bpp::pivoting

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "pivoting/classify_row.h"
@@ -48,6 +49,10 @@ struct Workspace {
     VisitedSets visited;
     std::vector<RowState> trial;  ///< the index set a polish round starts from
     Snapshot kept;              ///< the converged answer while a polish round tries another
+    /// The x of the latest run's answer, kept when the run converged on the unshifted problem:
+    /// `current` holds its w and scales then (converged_iterate).
+    std::vector<double> answer;
+    bool answer_kept = false;
 };
 
 /// A friction row at a bound whose normal is free: its value moves with the normal.
@@ -139,10 +144,15 @@ public:
     }
 
     LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
+        ws_.answer_kept = false;
         normalize(lcp_, it(), states);
         const LoopOutcome outcome = pivot(states, x, settings_.max_pivots);
         if (outcome == LoopOutcome::Converged && settings_.polish && lcp_.shift == 0)
             polish(states, x, settings_.max_pivots - steps_taken_);
+        if (outcome == LoopOutcome::Converged && lcp_.shift == 0) {  // w, scale of it() are x's
+            ws_.answer = x;
+            ws_.answer_kept = true;
+        }
         return outcome;
     }
 
@@ -332,6 +342,13 @@ LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const Pi
                                std::vector<RowState>& states, std::vector<double>& x, PivotCounters& counters,
                                LoopWorkspace& workspace) {
     return PivotLoop(lcp, solver, settings, counters, workspace.contents().loop).run(states, x);
+}
+
+const Iterate* converged_iterate(LoopWorkspace& workspace, const std::vector<double>& x) {
+    const Workspace& ws = workspace.contents().loop;
+    const bool same = ws.answer_kept && ws.answer.size() == x.size() &&
+                      std::memcmp(ws.answer.data(), x.data(), x.size() * sizeof(double)) == 0;
+    return same ? &ws.current : nullptr;
 }
 
 LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,

@@ -8,6 +8,7 @@
 #include "ode_bpp/solver.h"
 #include "pivoting/boxed_lcp.h"
 #include "pivoting/free_solver.h"
+#include "pivoting/iterate.h"
 #include "pivoting/kept_buffers.h"
 
 namespace ode_bpp::pivoting {
@@ -62,5 +63,11 @@ LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const Pi
 /// The same with buffers of its own (allocated for this run).
 LoopOutcome pivot_fixed_bounds(const BoxedLcp& lcp, FreeSolver& solver, const PivotSettings& settings,
                                std::vector<RowState>& states, std::vector<double>& x, PivotCounters& counters);
+
+/// w = A x - b and the row scales |A||x| + |b| (refresh_residual) at x, when x is bit for bit
+/// the answer of the workspace's latest run and that run converged on the unshifted problem
+/// (lcp.shift == 0); null otherwise. Valid until the workspace's next run. The answer of a solve
+/// need not come from the loop's latest run (single pivots, a projected iterate), hence the test.
+const Iterate* converged_iterate(LoopWorkspace& workspace, const std::vector<double>& x);
 
 }  // namespace ode_bpp::pivoting

@@ -5,7 +5,9 @@
 // (or removing) the tight rows T of a step rewrites columns >= min T and zeroes the rows of T
 // (linalg/row_delete.h, skyline_cholesky's removed rows). So a step restores L0 by copying that
 // tail and those rows (SkylineMatrix::copy_rows_from), not everything from the first column
-// holding min T, which on wide envelopes is most of the matrix.
+// holding min T, which on wide envelopes is most of the matrix. Right after a factorization L
+// holds nothing yet; the first step that needs it copies all of L0 (a step with no tight row
+// solves with L0 and copies nothing).
 #include <algorithm>
 #include <cassert>
 #include <limits>
@@ -75,7 +77,10 @@ public:
         load_matrix(shift);
         s_.L0 = s_.A_env;
         if (linalg::skyline_cholesky(s_.L0, 0, {}) >= 0) return false;
-        s_.L = s_.L0;
+        // L is not copied from L0 here (l_unset_): the first step that needs L restores all of
+        // it, and a step with no tight row, which solves with L0 itself, copies nothing
+        s_.L.reshape(s_.shape);
+        l_unset_ = true;
         dirty_from_ = s_.shape.n;
         s_.dirty_rows.clear();
         last_factor_ = nullptr;
@@ -136,8 +141,11 @@ private:
             if (tight[i]) s_.tight_rows.push_back(i);
     }
 
-    /// First column of s_.L that this step needs restored to L0: min(dirty_from_, min T).
+    /// First column of s_.L that this step needs restored to L0: min(dirty_from_, min T). The
+    /// cost model prices that restore (as if prepare had copied L0 into L).
     int restore_from() const { return std::min(dirty_from_, s_.tight_rows.front()); }
+    /// The same for the copy itself: column 0 while L holds nothing yet.
+    int copy_from() const { return l_unset_ ? 0 : restore_from(); }
 
     /// Bpp's cost model: the cheaper of deleting |T| rows and refactoring from the first tight
     /// column (docs/maths.md: deletion costs ~ |T| (m - i) height, refactoring ~ m height^2).
@@ -152,7 +160,7 @@ private:
         if (variant_ == SkylineVariant::DenseDelete) {
             s_.L.copy_tail_from(s_.L0, 0);
         } else {
-            const int from = restore_from();
+            const int from = copy_from();
             s_.L.copy_tail_from(s_.L0, from);
             s_.L.copy_rows_from(s_.L0, s_.dirty_rows, from);
         }
@@ -166,7 +174,7 @@ private:
     /// >= k0 from Ap, then Cholesky from k0 with the tight rows removed.
     FactorOutcome refactor_tail(const std::vector<char>& tight) {
         const int k0 = s_.tight_rows.front();
-        const int from = restore_from();
+        const int from = copy_from();
         copy_columns(s_.L0, from, k0);
         s_.L.copy_rows_from(s_.L0, s_.dirty_rows, from);
         s_.L.copy_tail_from(s_.A_env, k0);
@@ -185,6 +193,7 @@ private:
 #endif
 
     void mark_dirty() {
+        l_unset_ = false;
         dirty_from_ = s_.tight_rows.front();
         s_.dirty_rows = s_.tight_rows;
     }
@@ -203,6 +212,7 @@ private:
     /// The buffers: shape, cost model, A's envelope, L0, the working factor L and scratch.
     SkylineStorage& s_;
     int dirty_from_ = 0;
+    bool l_unset_ = false;  ///< L holds no values since prepare (copy_from)
     const SkylineMatrix* last_factor_ = nullptr;  ///< L_FF of the latest successful solve_free
 };
 

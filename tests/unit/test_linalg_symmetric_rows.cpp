@@ -1,0 +1,118 @@
+// Compressed symmetric rows stored in another order (linalg/symmetric_rows.h): the world step
+// assembles A straight into the solver's order (ode/island_view.h), and every reader of
+// Problem::sparse must see the same matrix as in the problem's own order.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "linalg/symmetric_rows.h"
+#include "ode_bpp/residuals.h"
+#include "ode_bpp/solver.h"
+#include "problems/generators.h"
+
+namespace ode_bpp::linalg {
+namespace {
+
+/// A's diagonal and strictly lower entries, row by row with increasing columns.
+void lower_of(const SymmetricRows& A, std::vector<double>& diagonal, std::vector<LowerEntry>& lower) {
+    diagonal.clear();
+    lower.clear();
+    for (int i = 0; i < A.n(); ++i) {
+        diagonal.push_back(A.diag(i));
+        for (int k = A.row_begin(i); k < A.row_end(i); ++k)
+            if (A.col(k) < i) lower.push_back({i, A.col(k), A.val(k)});
+    }
+}
+
+std::vector<int> shuffled(int n, unsigned seed) {
+    std::vector<int> perm(static_cast<std::size_t>(n));
+    std::iota(perm.begin(), perm.end(), 0);
+    std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
+    return perm;
+}
+
+void expect_same_rows(const SymmetricRows& a, const SymmetricRows& b) {
+    ASSERT_EQ(a.n(), b.n());
+    for (int i = 0; i < a.n(); ++i) {
+        EXPECT_EQ(a.diag(i), b.diag(i)) << "row " << i;
+        ASSERT_EQ(a.row_end(i) - a.row_begin(i), b.row_end(i) - b.row_begin(i)) << "row " << i;
+        for (int k = 0; k < a.row_end(i) - a.row_begin(i); ++k) {
+            EXPECT_EQ(a.col(a.row_begin(i) + k), b.col(b.row_begin(i) + k)) << "row " << i;
+            EXPECT_EQ(a.val(a.row_begin(i) + k), b.val(b.row_begin(i) + k)) << "row " << i;
+        }
+    }
+}
+
+TEST(SymmetricRows, OrderedAssemblyIsThePermutedMatrixEntryForEntry) {
+    const auto owned = problems::chain_mlcp(30, 20);
+    const SymmetricRows A(owned.view(), {});
+    std::vector<double> diagonal;
+    std::vector<LowerEntry> lower;
+    lower_of(A, diagonal, lower);
+    for (unsigned seed : {1u, 2u, 3u}) {
+        const std::vector<int> perm = shuffled(A.n(), seed);
+        SymmetricRows ordered;
+        ordered.assign_lower(diagonal, lower, perm);
+        EXPECT_EQ(ordered.order(), perm);
+        expect_same_rows(ordered, A.permuted(perm));  // same entries in the same order in each row
+        EXPECT_EQ(ordered.row_profile(), A.permuted(perm).row_profile());  // found while counting
+        SymmetricRows scratch;
+        expect_same_rows(ordered.in_built_order(scratch), A);
+        EXPECT_TRUE(ordered.in_built_order(scratch).order().empty());
+    }
+}
+
+TEST(SymmetricRows, PermutingCarriesTheOrderAndUndoingItGivesTheIdentity) {
+    const auto owned = problems::chain_mlcp(10, 6);
+    const SymmetricRows A(owned.view(), {});
+    const std::vector<int> first = shuffled(A.n(), 4), second = shuffled(A.n(), 5);
+    const SymmetricRows once = A.permuted(first);
+    const SymmetricRows twice = once.permuted(second);
+    for (int i = 0; i < A.n(); ++i) EXPECT_EQ(twice.built_row(i), first[second[i]]);
+    EXPECT_TRUE(once.permuted(inverse_permutation(first)).order().empty());
+    std::vector<double> dense_a(static_cast<std::size_t>(A.n()) * A.n(), 0.0), dense_b = dense_a;
+    A.to_dense_lower(dense_a.data(), A.n());
+    twice.to_dense_lower(dense_b.data(), A.n());
+    EXPECT_EQ(dense_a, dense_b);  // in the order the matrix was built in
+}
+
+TEST(SymmetricRows, AProblemWhoseRowsComeInTheSolversOrderGetsTheSameAnswer) {
+    const auto owned = problems::chain_mlcp(40, 20);
+    Problem p = owned.view();
+    const SymmetricRows A(p, {});
+    p.A = nullptr;
+    p.sparse = &A;
+    std::vector<double> x(static_cast<std::size_t>(p.n));
+    const Result plain = solve(p, Options{}, x.data());
+    ASSERT_EQ(plain.status, Status::Converged);
+    ASSERT_FALSE(plain.ordering.empty());
+    std::vector<double> diagonal;
+    std::vector<LowerEntry> lower;
+    lower_of(A, diagonal, lower);
+    for (const std::vector<int>& stored : {plain.ordering, shuffled(p.n, 6)}) {
+        SymmetricRows ordered;
+        ordered.assign_lower(diagonal, lower, stored);
+        Problem q = p;
+        q.sparse = &ordered;
+        Start start;
+        start.ordering = plain.ordering;
+        std::vector<double> y(static_cast<std::size_t>(p.n));
+        const Result r = solve(q, Options{}, y.data(), start);
+        EXPECT_EQ(r.status, plain.status);
+        EXPECT_EQ(r.pivoting.pivots, plain.pivoting.pivots);
+        EXPECT_EQ(y, x);
+        EXPECT_EQ(r.residuals.natural, plain.residuals.natural);
+        EXPECT_EQ(r.residuals.scaled_natural, plain.residuals.scaled_natural);
+        const Residuals stored_order = compute_residuals(q, ConstStrided{x.data(), 1});
+        const Residuals own_order = compute_residuals(p, ConstStrided{x.data(), 1});
+        EXPECT_EQ(stored_order.natural, own_order.natural);
+        EXPECT_EQ(stored_order.scaled_fixed_bound, own_order.scaled_fixed_bound);
+        EXPECT_EQ(stored_order.free, own_order.free);
+    }
+}
+
+}  // namespace
+}  // namespace ode_bpp::linalg

@@ -20,7 +20,7 @@ void IncrementalCholesky::reset(int capacity) {
     capacity_ = capacity;
     size_ = 0;
     const std::size_t entries = static_cast<std::size_t>(capacity) * capacity;
-    if (L_.size() < entries) L_.resize(entries);
+    L_.reserve(entries);
     sigma_.resize(static_cast<std::size_t>(capacity));
     cos_.resize(static_cast<std::size_t>(capacity));
     sin_.resize(static_cast<std::size_t>(capacity));
@@ -69,6 +69,12 @@ void IncrementalCholesky::solve(double* x) const {
     Eigen::Map<Eigen::VectorXd> v(x, size_);
     L.triangularView<Eigen::Lower>().solveInPlace(v);
     L.transpose().triangularView<Eigen::Upper>().solveInPlace(v);
+}
+
+void IncrementalCholesky::release() {
+    L_.release();
+    capacity_ = 0;
+    size_ = 0;
 }
 
 }  // namespace ode_bpp::linalg

@@ -6,6 +6,8 @@
 
 #include <vector>
 
+#include "linalg/page_array.h"
+
 namespace ode_bpp::linalg {
 
 class IncrementalCholesky {
@@ -31,12 +33,17 @@ public:
     /// x <- M_SS⁻¹ x, x: size() entries in S's order.
     void solve(double* x) const;
 
+    /// Gives the factor's storage back (a large one to the system at once, page_array.h): the
+    /// next reset() allocates afresh. Empties S.
+    void release();
+
 private:
     double* row(int i) { return L_.data() + static_cast<long>(i) * capacity_; }
+    const double* row(int i) const { return L_.data() + static_cast<long>(i) * capacity_; }
 
     int capacity_ = 0;
     int size_ = 0;
-    std::vector<double> L_;             ///< row-major, stride capacity_, lower triangle
+    PageArray L_;                       ///< row-major, stride capacity_; only the lower triangle is written or read
     std::vector<double> sigma_, cos_, sin_;  ///< remove(): sigma and the rotations, by position
 };
 

@@ -38,6 +38,10 @@ public:
     bool accurate(const Iterate& it, double tolerance) const;
     /// Refactors F afresh and recomputes A_FT x_T (after !accurate()); false on breakdown.
     bool refresh();
+    /// Gives the dense factor's storage back (IncrementalCholesky::release): a stage that runs
+    /// now and then on a large island does not keep 8 |F|² bytes resident for the rest of the
+    /// run. The next reset() allocates afresh.
+    void release() { factor_.release(); }
 
 private:
     void add_column(int i, double factor);  ///< tight_product_ += factor A(:, i), off the diagonal

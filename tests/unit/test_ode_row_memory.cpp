@@ -166,15 +166,15 @@ TEST(OrderingCache, EqualIslandsWithDifferentIdentitiesKeepTheirOwnOrderings) {
     OrderingCache::signature(problem, first_a, a);
     OrderingCache::signature(problem, first_b, b);
     ASSERT_NE(a, b);
-    cache.store(a, {0, 1, 2, 3, 4, 5});
-    cache.store(b, {5, 4, 3, 2, 1, 0});
-    ASSERT_NE(cache.find(a), nullptr);
-    EXPECT_EQ(*cache.find(a), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+    cache.store(a, {0, 1, 2, 3, 4, 5}, 1);
+    cache.store(b, {5, 4, 3, 2, 1, 0}, 1);
+    ASSERT_NE(cache.find(a, 2), nullptr);
+    EXPECT_EQ(*cache.find(a, 2), (std::vector<int>{0, 1, 2, 3, 4, 5}));
     // a change of structure (another joint, other bodies) is another island
     joints[1].body[1] = -1;
     OrderingCache::Signature changed;
     OrderingCache::signature(problem, first_a, changed);
-    EXPECT_EQ(cache.find(changed), nullptr);
+    EXPECT_EQ(cache.find(changed, 2), nullptr);
 }
 
 // Contacts that come and go (a pile: new contact pairs every step, each seen once) must not make
@@ -201,11 +201,28 @@ TEST(OrderingCache, StaysBoundedWhileIslandsChange) {
     OrderingCache cache;
     std::size_t largest = 0;
     for (std::intptr_t k = 0; k < 10 * static_cast<std::intptr_t>(OrderingCache::kMaxIslands); ++k) {
-        cache.store(OrderingCache::Signature{k, 7, 0, 3}, {0, 1, 2});
+        cache.store(OrderingCache::Signature{k, 7, 0, 3}, {0, 1, 2}, 1);
         largest = std::max(largest, cache.size());
     }
     EXPECT_EQ(largest, OrderingCache::kMaxIslands);
-    EXPECT_NE(cache.find(OrderingCache::Signature{10 * static_cast<std::intptr_t>(OrderingCache::kMaxIslands) - 1, 7, 0, 3}), nullptr);
+    EXPECT_NE(cache.find(OrderingCache::Signature{10 * static_cast<std::intptr_t>(OrderingCache::kMaxIslands) - 1, 7, 0, 3}, 1), nullptr);
+}
+
+// A resting pile meets a new structure now and then, each seen for a few steps only: the cache
+// forgets them once unseen for kKeepSteps, so it holds what recurs, not every structure met.
+TEST(OrderingCache, ForgetsStructuresUnseenForKeepSteps) {
+    OrderingCache cache;
+    const OrderingCache::Signature steady{1, 7, 0, 3};
+    std::uint64_t step = 1;
+    for (std::intptr_t k = 0; k < 100; ++k, step += 10) {
+        if (cache.find(steady, step) == nullptr) cache.store(steady, {2, 1, 0}, step);
+        const OrderingCache::Signature passing{1000 + k, 7, 0, 3};
+        if (cache.find(passing, step) == nullptr) cache.store(passing, {0, 1, 2}, step);
+        EXPECT_LE(cache.size(), 1 + OrderingCache::kKeepSteps / 10 + 1) << "step " << step;
+    }
+    EXPECT_NE(cache.find(steady, step), nullptr);  // seen every 10 steps: kept
+    EXPECT_EQ(cache.find(OrderingCache::Signature{1000, 7, 0, 3}, step), nullptr);
+    EXPECT_NE(cache.find(OrderingCache::Signature{1099, 7, 0, 3}, step), nullptr);  // seen 10 steps ago
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "ode/ordering_cache.h"
 
+#include <iterator>
+
 namespace ode_bpp {
 
 void OrderingCache::signature(const dMLCP& p, const RowKey& first_row, Signature& structure) {
@@ -16,14 +18,25 @@ void OrderingCache::signature(const dMLCP& p, const RowKey& first_row, Signature
     }
 }
 
-const std::vector<int>* OrderingCache::find(const Signature& structure) const {
+const std::vector<int>* OrderingCache::find(const Signature& structure, std::uint64_t step) {
+    if (step != swept_) forget_older_than(step);
     const auto it = orderings_.find(structure);
-    return it == orderings_.end() ? nullptr : &it->second;
+    if (it == orderings_.end()) return nullptr;
+    it->second.seen = step;
+    return &it->second.ordering;
 }
 
-void OrderingCache::store(const Signature& structure, const std::vector<int>& ordering) {
+void OrderingCache::store(const Signature& structure, const std::vector<int>& ordering, std::uint64_t step) {
     if (orderings_.size() >= kMaxIslands && orderings_.count(structure) == 0) orderings_.clear();
-    orderings_[structure] = ordering;
+    Entry& entry = orderings_[structure];
+    entry.ordering = ordering;
+    entry.seen = step;
+}
+
+void OrderingCache::forget_older_than(std::uint64_t step) {
+    swept_ = step;
+    for (auto it = orderings_.begin(); it != orderings_.end();)
+        it = step > it->second.seen + kKeepSteps ? orderings_.erase(it) : std::next(it);
 }
 
 }  // namespace ode_bpp

@@ -24,17 +24,31 @@ public:
     /// structure: output, the island's signature: the identity of its first row, m, then each
     /// joint's first row and bodies.
     static void signature(const dMLCP& problem, const RowKey& first_row, Signature& structure);
-    /// The ordering stored for this signature, or null.
-    const std::vector<int>* find(const Signature& structure) const;
-    /// Stores (or replaces) the ordering of a signature. Forgets everything once kMaxIslands
-    /// signatures are held, so islands that come and go do not accumulate.
-    void store(const Signature& structure, const std::vector<int>& ordering);
-    /// Signatures held: at most kMaxIslands.
+    /// The ordering stored for this signature, or null; marks it seen at `step` (the world's step
+    /// number). The first call of a later step first forgets every ordering not seen for more
+    /// than kKeepSteps steps.
+    const std::vector<int>* find(const Signature& structure, std::uint64_t step);
+    /// Stores (or replaces) the ordering of a signature, seen at `step`. Forgets everything once
+    /// kMaxIslands signatures are held.
+    void store(const Signature& structure, const std::vector<int>& ordering, std::uint64_t step);
+    /// Signatures held: at most kMaxIslands, and only those seen in the last kKeepSteps + 1 steps.
     std::size_t size() const { return orderings_.size(); }
     static constexpr std::size_t kMaxIslands = 256;
+    /// A resting pile meets a new contact structure now and then and never sees most of them
+    /// again; without an age limit each stayed until the cache was full, and the process's
+    /// memory rose by a few kB per new structure for tens of thousands of steps (the pyramid's
+    /// 940-row island: about 11 kB each). 64 steps (about a second at 60 Hz) keeps what recurs.
+    static constexpr std::uint64_t kKeepSteps = 64;
 
 private:
-    std::map<Signature, std::vector<int>> orderings_;
+    struct Entry {
+        std::vector<int> ordering;
+        std::uint64_t seen = 0;
+    };
+    void forget_older_than(std::uint64_t step);
+
+    std::map<Signature, Entry> orderings_;
+    std::uint64_t swept_ = 0;  ///< the step whose first find() last swept
 };
 
 }  // namespace ode_bpp

@@ -139,7 +139,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
         }
         if (known_rows && !small) {
             OrderingCache::signature(*problem, keys.front(), structure);
-            if (const std::vector<int>* known = ws.orderings.find(structure)) start.ordering = *known;
+            if (const std::vector<int>* known = ws.orderings.find(structure, problem->step)) start.ordering = *known;
         }
     }
     if (!warm) start.states.clear();
@@ -160,7 +160,7 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     if (use_memory && status != dMLCPFailed)
         ws.memory.remember(keys, problem->step, r.states, recalled ? &scratch.slots : nullptr);
     if (known_rows && !small && !r.ordering.empty() && r.ordering != start.ordering)
-        ws.orderings.store(structure, r.ordering);
+        ws.orderings.store(structure, r.ordering, problem->step);
     ws.last = std::move(r);  // last use of r: no copy of its vectors per island
     return status;
 }

@@ -1,5 +1,6 @@
 // The patched world step and ode-bpp's registration: precision, registry, per-world choice,
-// observer, statistics, the Dantzig fallback of the hook, and dSolveMLCPDantzig.
+// observer, statistics, the Dantzig fallback of the hook, the end of a world, and
+// dSolveMLCPDantzig.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -242,6 +243,24 @@ TEST(OdeHook, FailedSolverFallsBackToDantzigAndTheWorldStaysSane) {
     SmallScene again("test-nan");
     for (int i = 0; i < 60; ++i) again.step();
     EXPECT_NEAR(dBodyGetPosition(again.box)[2], dBodyGetPosition(ref.box)[2], 1e-9);
+}
+
+// A world's settings end with it: a world created later at the same address (the allocator
+// reuses it) must start from the defaults, not inherit them.
+TEST(OdeHook, DestroyingAWorldForgetsItsSettings) {
+    OdeLifetime ode;
+    dWorldID world = dWorldCreate();
+    ode_bpp::WorldSettings settings;
+    settings.options.max_pivots = 7;
+    settings.warm_start = false;
+    ode_bpp::set_world_settings(world, settings);
+    ASSERT_EQ(ode_bpp::world_settings(world).options.max_pivots, 7);
+    const dWorldID gone = world;
+    dWorldDestroy(world);
+    const ode_bpp::WorldSettings after = ode_bpp::world_settings(gone);  // a lookup by address only
+    EXPECT_EQ(after.options.max_pivots, ode_bpp::WorldSettings{}.options.max_pivots);
+    EXPECT_TRUE(after.warm_start);
+    EXPECT_EQ(dAddMLCPWorldDestroyedListener(nullptr, nullptr), 0);
 }
 
 TEST(OdeHook, SolveMLCPDantzigSolvesABoxedProblem) {

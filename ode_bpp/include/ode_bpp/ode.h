@@ -63,8 +63,9 @@ ODE_BPP_API Result last_island_result(dWorldID world);
 /// on the solve path. Valid in the observer's "before" call.
 ODE_BPP_API void island_matrix_lower(const dMLCP& island, std::vector<double>& A);
 
-/// Forgets the warm-start state and settings of a world (call before dWorldDestroy if the
-/// process creates many worlds; stale state is harmless otherwise).
+/// Forgets the warm-start state and settings of a world. dWorldDestroy does this itself (the
+/// hook listens for it, <ode/mlcp.h> dAddMLCPWorldDestroyedListener), so that a world created
+/// later at the same address starts afresh; calling it earlier is harmless.
 ODE_BPP_API void forget_world(dWorldID world);
 
 }  // namespace ode_bpp

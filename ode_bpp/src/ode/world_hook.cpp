@@ -165,11 +165,16 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     return status;
 }
 
+/// A world's settings, warm-start memory and orderings end with it: a world created later may
+/// get the same address, and must not inherit them.
+void on_world_destroyed(dWorldID world, void*) { forget_world(world); }
+
 int register_all() {
     int registered = 0;
     for (const Registration& r : registrations())
         registered += dRegisterMLCPSolverEx(r.name.c_str(), &solve_island, const_cast<Method*>(&r.method),
                                             dMLCP_API_VERSION, dMLCP_SPARSE);
+    dAddMLCPWorldDestroyedListener(&on_world_destroyed, nullptr);  // 0 when already added: fine
     return registered;
 }
 

@@ -26,7 +26,7 @@ namespace ode_bpp::pivoting {
 /// outlives it: a warm solve allocates nothing. One solve per buffers at a time.
 struct SmallIslandBuffers {
     std::vector<double> factor;   ///< n x n, row stride n: A_FF, then L_FF, in its leading block
-    std::vector<double> diagonal, rhs, lo, hi, w, scale;
+    std::vector<double> rhs, lo, hi, w, scale;
     std::vector<int> free;
     std::vector<RowState> requested, best_states, trial, kept_states;
     std::vector<double> kept_x, kept_w, kept_scale;

@@ -117,12 +117,9 @@ struct DenseDiagonal {
     double operator()(int i) const { return p.A[static_cast<std::ptrdiff_t>(i) * p.lda + i]; }
 };
 
-/// w = A x - b and scale = |A||x| + |b| from the dense form's lower triangle, each entry used for
-/// both of its rows, each row summed as the compressed rows' residual_vectors sums it (diagonal,
-/// off-diagonal terms by increasing column, then b). O(n^2), no allocation beyond w and scale.
-void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
-    w.resize(static_cast<std::size_t>(p.n));
-    scale.resize(static_cast<std::size_t>(p.n));
+}  // namespace
+
+void dense_residual_vectors(const Problem& p, ConstStrided x, double* w, double* scale) {
     for (int i = 0; i < p.n; ++i) {
         w[i] = DenseDiagonal{p}(i) * x[i];
         scale[i] = std::abs(w[i]);
@@ -141,6 +138,14 @@ void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double
         w[i] -= p.b[i];
         scale[i] += std::abs(p.b[i]);
     }
+}
+
+namespace {
+
+void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
+    w.resize(static_cast<std::size_t>(p.n));
+    scale.resize(static_cast<std::size_t>(p.n));
+    dense_residual_vectors(p, x, w.data(), scale.data());
 }
 
 }  // namespace

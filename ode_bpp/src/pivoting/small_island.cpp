@@ -28,6 +28,13 @@ double entry(const Problem& p, int i, int j) {
 
 bool is_friction_row(const Problem& p, int i) { return p.findex != nullptr && p.findex[i] >= 0; }
 
+/// Grows v to n entries and never shrinks it: the buffers are read by index below n only, and
+/// islands of changing sizes would otherwise pay a zero fill at every growth.
+template <typename T>
+void at_least(std::vector<T>& v, std::size_t n) {
+    if (v.size() < n) v.resize(n);
+}
+
 /// Eq. 6 densely: x_F = A_FF^-1 (b_F - A_FT x_T) for the free rows ws.free[0..nf) (original
 /// order) with x_F = 0 on entry, A_FF factored afresh in ws.factor; false when A_FF is not
 /// positive definite. x: n entries, in and out. Each row of A_FF is factored as soon as it is
@@ -66,9 +73,9 @@ void flip_all(const Infeasibility& inf, std::vector<RowState>& states) {
 class SmallIsland {
 public:
     SmallIsland(const Problem& p, const Options& o, SmallIslandBuffers& ws, Result& r) : p_(p), o_(o), ws_(ws), r_(r), n_(p.n) {
-        ws_.factor.resize(static_cast<std::size_t>(n_) * n_);
-        for (auto* v : {&ws_.rhs, &ws_.w, &ws_.scale}) v->resize(static_cast<std::size_t>(n_));
-        ws_.free.resize(static_cast<std::size_t>(n_));
+        at_least(ws_.factor, static_cast<std::size_t>(n_) * n_);
+        for (auto* v : {&ws_.rhs, &ws_.w, &ws_.scale, &ws_.lo, &ws_.hi}) at_least(*v, static_cast<std::size_t>(n_));
+        at_least(ws_.free, static_cast<std::size_t>(n_));
     }
 
     /// Frozen friction (Dantzig's semantics, as the driver's solve_frozen): friction rows held at
@@ -93,8 +100,6 @@ public:
 private:
     /// Bounds of the rows that keep them: rows below nub unbounded, others as given.
     void set_fixed_bounds() {
-        ws_.lo.resize(static_cast<std::size_t>(n_));
-        ws_.hi.resize(static_cast<std::size_t>(n_));
         for (int i = 0; i < n_; ++i) {
             const bool unbounded = i < p_.nub;
             ws_.lo[i] = unbounded ? -kInf : p_.lo[i];
@@ -185,7 +190,9 @@ private:
 
 
     /// w = A x - b and the row scales |A||x| + |b| (residuals.h).
-    void refresh_w(const std::vector<double>& x) { residual_vectors(p_, ConstStrided{x.data(), 1}, ws_.w, ws_.scale); }
+    void refresh_w(const std::vector<double>& x) {
+        dense_residual_vectors(p_, ConstStrided{x.data(), 1}, ws_.w.data(), ws_.scale.data());
+    }
 
     /// Eq. 4 row by row (classify_row.h).
     const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {

@@ -41,7 +41,7 @@ std::pair<double, double> bounds_at(const Problem& p, ConstStrided x, int i) {
 /// FrictionSet::consistent in pivoting/friction_set.h, uses the same). Without it a friction row whose own
 /// scale is rounding (x ~ 1e-13 beside a resting normal) read 0.5 on answers accurate to 1e-12.
 template <typename Diagonal>
-double row_scale(const Problem& p, Diagonal diag, const std::vector<double>& scale, int i) {
+[[gnu::always_inline]] inline double row_scale(const Problem& p, Diagonal diag, const std::vector<double>& scale, int i) {
     double s = scale[i] / diag(i);
     if (i >= p.nub && p.findex != nullptr && p.findex[i] >= 0 && std::isfinite(p.hi[i])) {
         const int n = p.findex[i];
@@ -58,7 +58,9 @@ struct RowBounds {
     bool friction = false;  ///< findex[i] >= 0
 };
 
-RowBounds row_bounds(const Problem& p, ConstStrided x, int i) {
+// always_inline: summarize's three instantiations call it once per row, and GCC's -O2 left it
+// out of line (a call per row, its result through memory: a tenth of a small island's summary)
+[[gnu::always_inline]] inline RowBounds row_bounds(const Problem& p, ConstStrided x, int i) {
     const int normal = p.findex != nullptr ? p.findex[i] : -1;
     const std::pair<double, double> unbounded{-kInf, kInf};
     if (i < p.nub) return {unbounded, unbounded, normal >= 0};
@@ -115,12 +117,9 @@ struct DenseDiagonal {
     double operator()(int i) const { return p.A[static_cast<std::ptrdiff_t>(i) * p.lda + i]; }
 };
 
-/// w = A x - b and scale = |A||x| + |b| from the dense form's lower triangle, each entry used for
-/// both of its rows, each row summed as the compressed rows' residual_vectors sums it (diagonal,
-/// off-diagonal terms by increasing column, then b). O(n^2), no allocation beyond w and scale.
-void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
-    w.resize(static_cast<std::size_t>(p.n));
-    scale.resize(static_cast<std::size_t>(p.n));
+}  // namespace
+
+void dense_residual_vectors(const Problem& p, ConstStrided x, double* w, double* scale) {
     for (int i = 0; i < p.n; ++i) {
         w[i] = DenseDiagonal{p}(i) * x[i];
         scale[i] = std::abs(w[i]);
@@ -139,6 +138,14 @@ void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double
         w[i] -= p.b[i];
         scale[i] += std::abs(p.b[i]);
     }
+}
+
+namespace {
+
+void dense_residual_vectors(const Problem& p, ConstStrided x, std::vector<double>& w, std::vector<double>& scale) {
+    w.resize(static_cast<std::size_t>(p.n));
+    scale.resize(static_cast<std::size_t>(p.n));
+    dense_residual_vectors(p, x, w.data(), scale.data());
 }
 
 }  // namespace

@@ -34,6 +34,13 @@ Residuals residuals_from(const Problem& problem, const linalg::SymmetricRows& A,
 Residuals dense_residuals_from(const Problem& problem, ConstStrided x, const std::vector<double>& w,
                                const std::vector<double>& scale, const std::vector<RowState>* states);
 
+/// As residual_vectors(problem, x, w, scale) on a problem in the dense form (Problem::A), into
+/// w and scale of at least n entries each (entries from n on untouched): w = A x - b and
+/// scale = |A||x| + |b| from the lower triangle, each entry used for both of its rows, each row
+/// summed as the compressed rows' residual_vectors sums it (diagonal, off-diagonal terms by
+/// increasing column, then b). O(n^2), no allocation.
+void dense_residual_vectors(const Problem& problem, ConstStrided x, double* w, double* scale);
+
 /// As residual_vectors(problem, x, w, scale), from A = linalg::SymmetricRows(problem, {}) or
 /// problem.sparse (stored in any order; w and scale come in the problem's); each
 /// row summed as SymmetricRows::multiply_with_scale sums it, then b: the pivoting loop's w and

@@ -166,12 +166,19 @@ ValidationResult validate_structure(const Problem& problem) {
     return {};
 }
 
-// Row by row, the lower entries before the diagonal: the defect a dense scan would meet first.
+// Row by row as stored, each row's entries left of the diagonal in the order the matrix was built
+// in (a row's entries come by increasing built column, symmetric_rows.h), then the diagonal; the
+// message names the row and column as built (SymmetricRows::built_row): the caller's, whatever
+// order the rows are stored in.
 ValidationResult validate_matrix(const linalg::SymmetricRows& A) {
     for (int i = 0; i < A.n(); ++i) {
-        for (int k = A.row_begin(i); k < A.row_end(i) && A.col(k) < i; ++k)
-            if (!std::isfinite(A.val(k))) return not_finite(i, A.col(k));
-        if (!good_diagonal(A.diag(i))) return check_diagonal(i, A.diag(i));
+        const int row = A.built_row(i);
+        for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+            const int col = A.built_row(A.col(k));
+            if (col > row) break;
+            if (!std::isfinite(A.val(k))) return not_finite(row, col);
+        }
+        if (!good_diagonal(A.diag(i))) return check_diagonal(row, A.diag(i));
     }
     return {};
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "linalg/symmetric_rows.h"
 #include "ode_bpp/solver.h"
 #include "ode_bpp/validation.h"
 #include "problems/generators.h"
@@ -54,6 +55,21 @@ TEST(Validation, InfInAIsRejected) {
     auto p = good_problem();
     p.a(3, 3) = kInf;
     EXPECT_NE(expect_invalid(p).find("row 3"), std::string::npos);
+}
+
+TEST(Validation, RowsStoredInAnotherOrderAreNamedAsTheCallerBuiltThem) {
+    // built rows 0, 1, 2 stored as 2, 0, 1: stored row 2 (built row 1) holds A(1,0), then the
+    // NaN A(2,1) among its entries right of the diagonal as built
+    std::vector<double> diagonal{1.0, 1.0, 1.0};
+    const std::vector<linalg::LowerEntry> lower{{1, 0, 0.1}, {2, 1, kNaN}};
+    linalg::SymmetricRows A;
+    A.assign_lower(diagonal, lower, {2, 0, 1});
+    const std::string message = validate_matrix(A).message;
+    EXPECT_NE(message.find("row 2: A(2,1)"), std::string::npos) << message;
+
+    diagonal = {1.0, 0.0, 1.0};
+    A.assign_lower(diagonal, {{1, 0, 0.1}}, {2, 0, 1});
+    EXPECT_NE(validate_matrix(A).message.find("row 1:"), std::string::npos) << validate_matrix(A).message;
 }
 
 TEST(Validation, UpperTriangleIsNotRead) {

@@ -49,8 +49,12 @@ struct WorldSettings {
     bool warm_start = true;         ///< start each island from the previous step's index sets
 };
 
-/// Replaces the settings of a world (thread-safe). Worlds without settings use the defaults.
+/// Replaces the settings of a world (thread-safe). Worlds without settings use the defaults
+/// with one exception: Options::record_steps is false (no Result::pivoting.tight_per_step in
+/// last_island_result, which would cost every island an allocation). Settings a caller passes
+/// here are used as given, so WorldSettings{} records the steps again.
 ODE_BPP_API void set_world_settings(dWorldID world, const WorldSettings& settings);
+/// The settings of a world: those last set, or the hook's defaults (record_steps false).
 ODE_BPP_API WorldSettings world_settings(dWorldID world);
 
 /// The full Result of the last island that the hook solved in this world (for demos and tests:

@@ -32,8 +32,17 @@
 namespace ode_bpp {
 namespace {
 
+/// The settings of a world that set_world_settings never reached (ode.h): the defaults, but no
+/// record of |T| per pivot step, which would cost every island an allocation for a Result the
+/// hook keeps only as last_island_result.
+WorldSettings hook_default_settings() {
+    WorldSettings s;
+    s.options.record_steps = false;
+    return s;
+}
+
 struct WorldState {
-    WorldSettings settings;
+    WorldSettings settings = hook_default_settings();
     RowStateMemory memory;       // index sets of the previous steps, by row identity
     OrderingCache orderings;     // row orderings of the previous steps, by island structure
     Result last;
@@ -191,7 +200,7 @@ void set_world_settings(dWorldID world, const WorldSettings& settings) {
 WorldSettings world_settings(dWorldID world) {
     std::lock_guard<std::mutex> g(hook().lock);
     auto it = hook().worlds.find(world);
-    return it != hook().worlds.end() ? it->second.settings : WorldSettings{};
+    return it != hook().worlds.end() ? it->second.settings : hook_default_settings();
 }
 
 Result last_island_result(dWorldID world) {

@@ -28,27 +28,38 @@ double entry(const Problem& p, int i, int j) {
 
 bool is_friction_row(const Problem& p, int i) { return p.findex != nullptr && p.findex[i] >= 0; }
 
+/// Grows v to n entries and never shrinks it: the buffers are read by index below n only, and
+/// islands of changing sizes would otherwise pay a zero fill at every growth.
+template <typename T>
+void at_least(std::vector<T>& v, std::size_t n) {
+    if (v.size() < n) v.resize(n);
+}
+
 /// Eq. 6 densely: x_F = A_FF^-1 (b_F - A_FT x_T) for the free rows ws.free[0..nf) (original
 /// order) with x_F = 0 on entry, A_FF factored afresh in ws.factor; false when A_FF is not
-/// positive definite. x: n entries, in and out.
+/// positive definite. x: n entries, in and out. Each row of A_FF is factored as soon as it is
+/// gathered, and the forward solve's entry taken with it (linalg/dense_cholesky.h): one pass.
 bool solve_free_rows(const Problem& p, int nf, SmallIslandBuffers& ws, std::vector<double>& x) {
     const int n = p.n;
     const int* free = ws.free.data();
     double* a = ws.factor.data();
+    double* y = ws.rhs.data();
     for (int k = 0; k < nf; ++k) {
         const int i = free[k];
+        const double* a_i = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
         double rhs = p.b[i];
         if (nf < n)  // A_FT x_T; x_F is still 0
             for (int j = 0; j < n; ++j)
                 if (x[j] != 0) rhs -= entry(p, i, j) * x[j];
-        ws.rhs[k] = rhs;
+        y[k] = rhs;
         double* row = a + static_cast<std::ptrdiff_t>(k) * n;
-        for (int l = 0; l < k; ++l) row[l] = p.A[static_cast<std::ptrdiff_t>(i) * p.lda + free[l]];
-        row[k] = ws.diagonal[k] = p.A[static_cast<std::ptrdiff_t>(i) * p.lda + i];
+        for (int l = 0; l < k; ++l) row[l] = a_i[free[l]];
+        row[k] = a_i[i];
+        if (!linalg::dense_cholesky_row(a, k, n, a_i[i])) return false;
+        linalg::dense_forward_entry(a, k, n, y);
     }
-    if (linalg::dense_cholesky(a, nf, n, ws.diagonal.data()) >= 0) return false;
-    linalg::dense_cholesky_solve(a, nf, n, ws.rhs.data());
-    for (int k = 0; k < nf; ++k) x[free[k]] = ws.rhs[k];
+    linalg::dense_backward_solve(a, nf, n, y);
+    for (int k = 0; k < nf; ++k) x[free[k]] = y[k];
     return true;
 }
 
@@ -62,9 +73,9 @@ void flip_all(const Infeasibility& inf, std::vector<RowState>& states) {
 class SmallIsland {
 public:
     SmallIsland(const Problem& p, const Options& o, SmallIslandBuffers& ws, Result& r) : p_(p), o_(o), ws_(ws), r_(r), n_(p.n) {
-        ws_.factor.resize(static_cast<std::size_t>(n_) * n_);
-        for (auto* v : {&ws_.diagonal, &ws_.rhs, &ws_.w, &ws_.scale}) v->resize(static_cast<std::size_t>(n_));
-        ws_.free.resize(static_cast<std::size_t>(n_));
+        at_least(ws_.factor, static_cast<std::size_t>(n_) * n_);
+        for (auto* v : {&ws_.rhs, &ws_.w, &ws_.scale, &ws_.lo, &ws_.hi}) at_least(*v, static_cast<std::size_t>(n_));
+        at_least(ws_.free, static_cast<std::size_t>(n_));
     }
 
     /// Frozen friction (Dantzig's semantics, as the driver's solve_frozen): friction rows held at
@@ -89,8 +100,6 @@ public:
 private:
     /// Bounds of the rows that keep them: rows below nub unbounded, others as given.
     void set_fixed_bounds() {
-        ws_.lo.resize(static_cast<std::size_t>(n_));
-        ws_.hi.resize(static_cast<std::size_t>(n_));
         for (int i = 0; i < n_; ++i) {
             const bool unbounded = i < p_.nub;
             ws_.lo[i] = unbounded ? -kInf : p_.lo[i];
@@ -181,7 +190,9 @@ private:
 
 
     /// w = A x - b and the row scales |A||x| + |b| (residuals.h).
-    void refresh_w(const std::vector<double>& x) { residual_vectors(p_, ConstStrided{x.data(), 1}, ws_.w, ws_.scale); }
+    void refresh_w(const std::vector<double>& x) {
+        dense_residual_vectors(p_, ConstStrided{x.data(), 1}, ws_.w.data(), ws_.scale.data());
+    }
 
     /// Eq. 4 row by row (classify_row.h).
     const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {

@@ -23,10 +23,11 @@
 namespace ode_bpp::pivoting {
 
 /// The buffers of one small-island solve, kept by the caller (Workspace) so that their capacity
-/// outlives it: a warm solve allocates nothing. One solve per buffers at a time.
+/// outlives it: a warm solve allocates nothing. One solve per buffers at a time. The vectors of
+/// n entries may hold more (they only grow); entries from n on mean nothing.
 struct SmallIslandBuffers {
     std::vector<double> factor;   ///< n x n, row stride n: A_FF, then L_FF, in its leading block
-    std::vector<double> diagonal, rhs, lo, hi, w, scale;
+    std::vector<double> rhs, lo, hi, w, scale;
     std::vector<int> free;
     std::vector<RowState> requested, best_states, trial, kept_states;
     std::vector<double> kept_x, kept_w, kept_scale;

@@ -40,7 +40,8 @@ struct Snapshot {
 /// (callgrind, ODE's demo_motors). A run uses them from start to end.
 struct Workspace {
     std::vector<char> tight;
-    std::vector<double> Ax, x_free, rhs_x;
+    std::vector<double> Ax, x_free, rhs_x;  ///< A_FT x_T, x_F, Eq. 6's right-hand side
+    std::vector<int> columns;               ///< tight_columns_product's scratch
     Iterate current;
     Infeasibility inf;
     Snapshot best;              ///< the least infeasible iterate so far
@@ -260,7 +261,7 @@ private:
 
     /// x_F from Eq. 6 with x_T as given in x (linked rows 0), with the loss-of-accuracy guard.
     bool solve_free_rows(std::vector<double>& x) {
-        lcp_.A->multiply(x, lcp_.shift, ws_.Ax);  // A_FT x_T on the free rows (x_F = 0 here)
+        tight_columns_product(*lcp_.A, ws_.tight, x, ws_.columns, ws_.Ax);
         for (int i = 0; i < n_; ++i)
             if (!ws_.tight[i]) ws_.rhs_x[i] = lcp_.b[i] - ws_.Ax[i];
         FactorOutcome outcome = solve_free(x, /*fresh=*/false);

@@ -191,14 +191,16 @@ private:
         int last_progress = 0;           // step of the latest new least count
         best_count_ = n_ + 1;
         best_violation_ = std::numeric_limits<double>::infinity();
+        best_pending_ = false;
         ws_.visited.clear();
         steps_taken_ = 0;
         for (int step = 0; step < max_steps; ++step) {
             if (settings_.stall_after > 0 && !in_murty && ws_.visited.revisits(states)) return give_best(states, x, LoopOutcome::Stalled);
             ++steps_taken_;
+            settle_best(x);
             if (!solve_step(states, x)) return LoopOutcome::Breakdown;
             const Infeasibility& inf = classify(states, x);
-            remember_if_best(inf, states, x);
+            remember_if_best(inf, states);
             if (inf.count() == 0) {
                 orient_pinned_rows(it(), states);
                 return LoopOutcome::Converged;
@@ -220,6 +222,7 @@ private:
                 // random and chain problems; termination is unaffected: each phase is
                 // Murty's finite method and ends only below a count that never rises)
                 in_murty = true;
+                settle_best(x);
                 states = ws_.best.states;
                 murty_pivot(ws_.best_inf, states);
             } else {
@@ -308,15 +311,34 @@ private:
         states[inf.rows[chosen]] = inf.flip_to[chosen];
     }
 
-    void remember_if_best(const Infeasibility& inf, const std::vector<RowState>& states, const std::vector<double>& x) {
+    /// Marks the step's iterate as the least infeasible so far. Only its index set is copied
+    /// now (the pivot changes it next); x, it() and inf stay as they are until the next step
+    /// overwrites them, and are copied then (settle_best), or never when the loop stops here.
+    void remember_if_best(const Infeasibility& inf, const std::vector<RowState>& states) {
         if (inf.count() > best_count_ || (inf.count() == best_count_ && inf.violation >= best_violation_)) return;
         best_count_ = inf.count();
         best_violation_ = inf.violation;
-        ws_.best.take(states, x, it());
-        ws_.best_inf = inf;
+        ws_.best.states = states;
+        best_pending_ = true;
+    }
+
+    /// Completes the snapshot that remember_if_best began, from the step's x, it() and inf,
+    /// which must be unchanged since. w and the scales are swapped in (the next step rewrites
+    /// all of them, refresh_residual); the bounds are copied (moving bounds change only some).
+    void settle_best(const std::vector<double>& x) {
+        if (!best_pending_) return;
+        best_pending_ = false;
+        Iterate& kept = ws_.best.iterate;
+        ws_.best.x = x;
+        kept.w.swap(it().w);
+        kept.scale.swap(it().scale);
+        kept.lo = it().lo;
+        kept.hi = it().hi;
+        ws_.best_inf = ws_.inf;
     }
 
     LoopOutcome give_best(std::vector<RowState>& states, std::vector<double>& x, LoopOutcome outcome) {
+        settle_best(x);
         give_projected(ws_.best, states, x, it());
         return outcome;
     }
@@ -329,6 +351,7 @@ private:
     Workspace& ws_;
     int steps_taken_ = 0;  ///< solves of Eq. 6 made by the latest pivot()
     int best_count_ = 0;
+    bool best_pending_ = false;  ///< ws_.best holds only the states of the current step's iterate (settle_best)
     double best_violation_ = std::numeric_limits<double>::infinity();
 };
 

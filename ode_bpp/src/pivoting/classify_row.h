@@ -23,12 +23,13 @@ inline RowVerdict classify_row(RowState s, double x, double w, double lo, double
                                double tol) {
     if (lo == hi) return {s};
     const double w_tol = tol * scale;
-    const double x_tol = w_tol / diag;
     switch (s) {
-        case RowState::Free:
+        case RowState::Free: {
+            const double x_tol = w_tol / diag;
             if (x < lo - x_tol) return {RowState::AtLo, (lo - x) * diag};
             if (x > hi + x_tol) return {RowState::AtHi, (x - hi) * diag};
             break;
+        }
         case RowState::AtLo:
             if (w < -w_tol) return {RowState::Free, -w};
             break;

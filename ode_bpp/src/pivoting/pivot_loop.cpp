@@ -120,7 +120,7 @@ void give_projected(const Snapshot& best, std::vector<RowState>& states, std::ve
 bool free_wrong_sign_rows(const Iterate& it, double limit, std::vector<RowState>& states) {
     bool any = false;
     for (std::size_t i = 0; i < states.size(); ++i) {
-        if (it.lo[i] == it.hi[i]) continue;
+        if (states[i] == RowState::Free || it.lo[i] == it.hi[i]) continue;  // a free row has no sign to be wrong
         if (wrong_sign(states[i], it.w[i]) > limit * it.scale[i]) {
             states[i] = RowState::Free;
             any = true;

@@ -40,7 +40,7 @@ struct Snapshot {
 /// (callgrind, ODE's demo_motors). A run uses them from start to end.
 struct Workspace {
     std::vector<char> tight;
-    std::vector<double> Ax, x_free, rhs_x;  ///< A_FT x_T, x_F, Eq. 6's right-hand side
+    std::vector<double> Ax, x_free;         ///< A_FT x_T (on the free rows), x_F
     std::vector<int> columns;               ///< tight_columns_product's scratch
     Iterate current;
     Infeasibility inf;
@@ -141,7 +141,6 @@ public:
         : lcp_(lcp), solver_(solver), settings_(settings), counters_(counters), n_(lcp.n()), ws_(ws) {
         it().lo = lcp.lo;
         it().hi = lcp.hi;
-        ws_.rhs_x.assign(static_cast<std::size_t>(n_), 0.0);
     }
 
     LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
@@ -265,8 +264,6 @@ private:
     /// x_F from Eq. 6 with x_T as given in x (linked rows 0), with the loss-of-accuracy guard.
     bool solve_free_rows(std::vector<double>& x) {
         tight_columns_product(*lcp_.A, ws_.tight, x, ws_.columns, ws_.Ax);
-        for (int i = 0; i < n_; ++i)
-            if (!ws_.tight[i]) ws_.rhs_x[i] = lcp_.b[i] - ws_.Ax[i];
         FactorOutcome outcome = solve_free(x, /*fresh=*/false);
         if (outcome == FactorOutcome::Breakdown) return false;
         if (outcome == FactorOutcome::Deleted && ws_.linked.empty() && free_residual() > accuracy_limit()) {
@@ -280,9 +277,11 @@ private:
         return true;
     }
 
-    /// Solves for x_F with the right-hand side kept in rhs_x, then refreshes w and the scales.
+    /// Solves for x_F with the right-hand side b_F - A_FT x_T (A_FT x_T in Ax), then refreshes w
+    /// and the scales.
     FactorOutcome solve_free(std::vector<double>& x, bool fresh) {
-        ws_.x_free = ws_.rhs_x;  // the strategy overwrites its argument
+        ws_.x_free.resize(static_cast<std::size_t>(n_));  // the tight rows' entries: ignored by the strategy
+        for (int i = 0; i < n_; ++i) ws_.x_free[i] = lcp_.b[i] - ws_.Ax[i];
         const FactorOutcome outcome = solver_.solve_free(ws_.tight, ws_.x_free, fresh);
         if (outcome == FactorOutcome::Breakdown) return outcome;
         for (int i = 0; i < n_; ++i)

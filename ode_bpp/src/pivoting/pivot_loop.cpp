@@ -96,9 +96,12 @@ void normalize(const BoxedLcp& lcp, const Iterate& it, std::vector<RowState>& st
     states.resize(static_cast<std::size_t>(lcp.n()), RowState::Free);
     for (int i = 0; i < lcp.n(); ++i) {
         RowState& s = states[i];
+        if (lcp.always_free[i]) {
+            s = RowState::Free;
+            continue;
+        }
         if (s != RowState::AtLo && s != RowState::AtHi) s = RowState::Free;  // also garbage values
-        if (lcp.always_free[i]) s = RowState::Free;
-        else if (it.lo[i] == it.hi[i]) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
+        if (it.lo[i] == it.hi[i]) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
         else if (s == RowState::AtLo && std::isinf(it.lo[i])) s = RowState::Free;
         else if (s == RowState::AtHi && std::isinf(it.hi[i])) s = RowState::Free;
     }

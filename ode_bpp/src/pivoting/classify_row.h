@@ -2,6 +2,7 @@
 // small_island.cpp classify alike, so that both accept the same answers).
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "ode_bpp/solver.h"
@@ -23,12 +24,13 @@ inline RowVerdict classify_row(RowState s, double x, double w, double lo, double
                                double tol) {
     if (lo == hi) return {s};
     const double w_tol = tol * scale;
-    const double x_tol = w_tol / diag;
     switch (s) {
-        case RowState::Free:
+        case RowState::Free: {
+            const double x_tol = w_tol / diag;
             if (x < lo - x_tol) return {RowState::AtLo, (lo - x) * diag};
             if (x > hi + x_tol) return {RowState::AtHi, (x - hi) * diag};
             break;
+        }
         case RowState::AtLo:
             if (w < -w_tol) return {RowState::Free, -w};
             break;
@@ -59,8 +61,11 @@ template <typename Diagonal>
 void classify_rows(int n, const std::vector<RowState>& states, const std::vector<double>& x, const std::vector<double>& w,
                    const std::vector<double>& lo, const std::vector<double>& hi, Diagonal diag,
                    const std::vector<double>& scale, double tol, Infeasibility& inf) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
     inf.clear();
     for (int i = 0; i < n; ++i) {
+        // a free row without bounds (ODE's joint rows) meets Eq. 4 whatever x and w are
+        if (states[i] == RowState::Free && lo[i] == -kInf && hi[i] == kInf) continue;
         const RowVerdict v = classify_row(states[i], x[i], w[i], lo[i], hi[i], diag(i), scale[i], tol);
         if (v.to == states[i]) continue;
         inf.rows.push_back(i);

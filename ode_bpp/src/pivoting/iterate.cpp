@@ -17,6 +17,21 @@ void refresh_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate
     }
 }
 
+void tight_columns_product(const linalg::SymmetricRows& A, const std::vector<char>& tight, const std::vector<double>& x,
+                           std::vector<int>& columns, std::vector<double>& y) {
+    const int n = A.n();
+    columns.clear();
+    for (int j = 0; j < n; ++j)
+        if (tight[j] && x[j] != 0) columns.push_back(j);
+    if (!A.order().empty())  // rows list their columns by built row, not by stored index
+        std::sort(columns.begin(), columns.end(), [&A](int a, int b) { return A.built_row(a) < A.built_row(b); });
+    y.assign(static_cast<std::size_t>(n), 0.0);
+    for (int j : columns) {
+        const double xj = x[j];
+        for (int k = A.row_begin(j); k < A.row_end(j); ++k) y[A.col(k)] += A.val(k) * xj;
+    }
+}
+
 double free_residual(const Iterate& it, const std::vector<char>& tight) {
     double worst = 0;
     for (std::size_t i = 0; i < tight.size(); ++i)

@@ -18,6 +18,16 @@ struct Iterate {
 /// w = (A + shift I) x - b and scale = |A + shift I||x| + |b|, from x (n entries).
 void refresh_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it);
 
+/// y_i = (A_FT x_T)_i on the free rows (tight[i] == 0; y's tight rows are not meaningful), Eq. 6's
+/// right-hand side without b: a pass over the rows of the tight columns with x_j != 0 only (A symmetric),
+/// O(n + their entries) instead of O(nnz). Each y_i adds its terms in the order row i of A lists
+/// them when every row lists its columns by increasing built_row (symmetric_rows.h; assign from a
+/// dense A with the identity, both assign_lower and permute_into of such a matrix keep this), so
+/// that y_i is bit for bit lcp.A->multiply's at x with x_F = 0: the terms skipped are exact zeros.
+/// x: n entries; columns: scratch.
+void tight_columns_product(const linalg::SymmetricRows& A, const std::vector<char>& tight, const std::vector<double>& x,
+                           std::vector<int>& columns, std::vector<double>& y);
+
 /// max over free rows (tight[i] == 0) of |w_i| / scale_i: Eq. 6's backward error, row by row.
 double free_residual(const Iterate& it, const std::vector<char>& tight);
 

@@ -40,7 +40,8 @@ struct Snapshot {
 /// (callgrind, ODE's demo_motors). A run uses them from start to end.
 struct Workspace {
     std::vector<char> tight;
-    std::vector<double> Ax, x_free, rhs_x;
+    std::vector<double> Ax, x_free;         ///< A_FT x_T (on the free rows), x_F
+    std::vector<int> columns;               ///< tight_columns_product's scratch
     Iterate current;
     Infeasibility inf;
     Snapshot best;              ///< the least infeasible iterate so far
@@ -95,9 +96,12 @@ void normalize(const BoxedLcp& lcp, const Iterate& it, std::vector<RowState>& st
     states.resize(static_cast<std::size_t>(lcp.n()), RowState::Free);
     for (int i = 0; i < lcp.n(); ++i) {
         RowState& s = states[i];
+        if (lcp.always_free[i]) {
+            s = RowState::Free;
+            continue;
+        }
         if (s != RowState::AtLo && s != RowState::AtHi) s = RowState::Free;  // also garbage values
-        if (lcp.always_free[i]) s = RowState::Free;
-        else if (it.lo[i] == it.hi[i]) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
+        if (it.lo[i] == it.hi[i]) s = s == RowState::AtHi ? RowState::AtHi : RowState::AtLo;
         else if (s == RowState::AtLo && std::isinf(it.lo[i])) s = RowState::Free;
         else if (s == RowState::AtHi && std::isinf(it.hi[i])) s = RowState::Free;
     }
@@ -119,7 +123,7 @@ void give_projected(const Snapshot& best, std::vector<RowState>& states, std::ve
 bool free_wrong_sign_rows(const Iterate& it, double limit, std::vector<RowState>& states) {
     bool any = false;
     for (std::size_t i = 0; i < states.size(); ++i) {
-        if (it.lo[i] == it.hi[i]) continue;
+        if (states[i] == RowState::Free || it.lo[i] == it.hi[i]) continue;  // a free row has no sign to be wrong
         if (wrong_sign(states[i], it.w[i]) > limit * it.scale[i]) {
             states[i] = RowState::Free;
             any = true;
@@ -140,7 +144,6 @@ public:
         : lcp_(lcp), solver_(solver), settings_(settings), counters_(counters), n_(lcp.n()), ws_(ws) {
         it().lo = lcp.lo;
         it().hi = lcp.hi;
-        ws_.rhs_x.assign(static_cast<std::size_t>(n_), 0.0);
     }
 
     LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
@@ -190,14 +193,16 @@ private:
         int last_progress = 0;           // step of the latest new least count
         best_count_ = n_ + 1;
         best_violation_ = std::numeric_limits<double>::infinity();
+        best_pending_ = false;
         ws_.visited.clear();
         steps_taken_ = 0;
         for (int step = 0; step < max_steps; ++step) {
             if (settings_.stall_after > 0 && !in_murty && ws_.visited.revisits(states)) return give_best(states, x, LoopOutcome::Stalled);
             ++steps_taken_;
+            settle_best(x);
             if (!solve_step(states, x)) return LoopOutcome::Breakdown;
             const Infeasibility& inf = classify(states, x);
-            remember_if_best(inf, states, x);
+            remember_if_best(inf, states);
             if (inf.count() == 0) {
                 orient_pinned_rows(it(), states);
                 return LoopOutcome::Converged;
@@ -219,6 +224,7 @@ private:
                 // random and chain problems; termination is unaffected: each phase is
                 // Murty's finite method and ends only below a count that never rises)
                 in_murty = true;
+                settle_best(x);
                 states = ws_.best.states;
                 murty_pivot(ws_.best_inf, states);
             } else {
@@ -260,9 +266,7 @@ private:
 
     /// x_F from Eq. 6 with x_T as given in x (linked rows 0), with the loss-of-accuracy guard.
     bool solve_free_rows(std::vector<double>& x) {
-        lcp_.A->multiply(x, lcp_.shift, ws_.Ax);  // A_FT x_T on the free rows (x_F = 0 here)
-        for (int i = 0; i < n_; ++i)
-            if (!ws_.tight[i]) ws_.rhs_x[i] = lcp_.b[i] - ws_.Ax[i];
+        tight_columns_product(*lcp_.A, ws_.tight, x, ws_.columns, ws_.Ax);
         FactorOutcome outcome = solve_free(x, /*fresh=*/false);
         if (outcome == FactorOutcome::Breakdown) return false;
         if (outcome == FactorOutcome::Deleted && ws_.linked.empty() && free_residual() > accuracy_limit()) {
@@ -276,9 +280,11 @@ private:
         return true;
     }
 
-    /// Solves for x_F with the right-hand side kept in rhs_x, then refreshes w and the scales.
+    /// Solves for x_F with the right-hand side b_F - A_FT x_T (A_FT x_T in Ax), then refreshes w
+    /// and the scales.
     FactorOutcome solve_free(std::vector<double>& x, bool fresh) {
-        ws_.x_free = ws_.rhs_x;  // the strategy overwrites its argument
+        ws_.x_free.resize(static_cast<std::size_t>(n_));  // the tight rows' entries: ignored by the strategy
+        for (int i = 0; i < n_; ++i) ws_.x_free[i] = lcp_.b[i] - ws_.Ax[i];
         const FactorOutcome outcome = solver_.solve_free(ws_.tight, ws_.x_free, fresh);
         if (outcome == FactorOutcome::Breakdown) return outcome;
         for (int i = 0; i < n_; ++i)
@@ -307,15 +313,34 @@ private:
         states[inf.rows[chosen]] = inf.flip_to[chosen];
     }
 
-    void remember_if_best(const Infeasibility& inf, const std::vector<RowState>& states, const std::vector<double>& x) {
+    /// Marks the step's iterate as the least infeasible so far. Only its index set is copied
+    /// now (the pivot changes it next); x, it() and inf stay as they are until the next step
+    /// overwrites them, and are copied then (settle_best), or never when the loop stops here.
+    void remember_if_best(const Infeasibility& inf, const std::vector<RowState>& states) {
         if (inf.count() > best_count_ || (inf.count() == best_count_ && inf.violation >= best_violation_)) return;
         best_count_ = inf.count();
         best_violation_ = inf.violation;
-        ws_.best.take(states, x, it());
-        ws_.best_inf = inf;
+        ws_.best.states = states;
+        best_pending_ = true;
+    }
+
+    /// Completes the snapshot that remember_if_best began, from the step's x, it() and inf,
+    /// which must be unchanged since. w and the scales are swapped in (the next step rewrites
+    /// all of them, refresh_residual); the bounds are copied (moving bounds change only some).
+    void settle_best(const std::vector<double>& x) {
+        if (!best_pending_) return;
+        best_pending_ = false;
+        Iterate& kept = ws_.best.iterate;
+        ws_.best.x = x;
+        kept.w.swap(it().w);
+        kept.scale.swap(it().scale);
+        kept.lo = it().lo;
+        kept.hi = it().hi;
+        ws_.best_inf = ws_.inf;
     }
 
     LoopOutcome give_best(std::vector<RowState>& states, std::vector<double>& x, LoopOutcome outcome) {
+        settle_best(x);
         give_projected(ws_.best, states, x, it());
         return outcome;
     }
@@ -328,6 +353,7 @@ private:
     Workspace& ws_;
     int steps_taken_ = 0;  ///< solves of Eq. 6 made by the latest pivot()
     int best_count_ = 0;
+    bool best_pending_ = false;  ///< ws_.best holds only the states of the current step's iterate (settle_best)
     double best_violation_ = std::numeric_limits<double>::infinity();
 };
 

@@ -151,7 +151,14 @@ private:
     /// column (docs/maths.md: deletion costs ~ |T| (m - i) height, refactoring ~ m height^2).
     bool prefers_refactor() const {
         if (variant_ != SkylineVariant::CostModel) return false;
-        return linalg::refactor_price(*s_.cost, s_.tight_rows, restore_from()) < linalg::deletion_price(*s_.cost, s_.tight_rows, restore_from());
+        const double deletion = linalg::deletion_price(*s_.cost, s_.tight_rows, restore_from());
+        // The refactor's price with nothing skipped bounds the exact one (O(n)) from above, and
+        // both are sums of quarter-integers, exact in doubles: below the deletion's, it decides
+        // alike at O(1) (on the crane most refactors win by that margin).
+        const double unskipped = linalg::kCopyUnit * s_.cost->copy_cost(restore_from()) +
+                                 linalg::kRefactorUnit * s_.cost->refactor_cost(s_.tight_rows.front());
+        if (unskipped < deletion) return true;
+        return linalg::refactor_price(*s_.cost, s_.tight_rows, restore_from()) < deletion;
     }
 
     /// Alg. 2 lines 7-11: L = L0 (BppDown: all of it, as the paper copies; else only the tail

@@ -65,16 +65,18 @@ TEST(LinalgPageArray, MovingTransfersTheStorage) {
 
 /// Allocates and frees `bytes` through malloc: glibc then serves blocks up to that size from its
 /// heap, which it keeps resident after they are freed (its mmap threshold follows freed blocks).
-void raise_malloc_threshold(std::size_t bytes) {
+/// Returns the byte it wrote (1); the block's address escapes through a volatile pointer, so the
+/// allocation cannot be elided.
+char raise_malloc_threshold(std::size_t bytes) {
     std::vector<char> block(bytes);
-    static volatile char sink;
-    block[bytes / 2] = 1;
-    sink = block[bytes / 2];
+    char* volatile escaped = block.data();
+    escaped[bytes / 2] = 1;
+    return escaped[bytes / 2];
 }
 
 TEST(LinalgPageArray, ReleaseReturnsTheResidentMemory) {
     constexpr std::size_t kBytes = std::size_t{8} << 20;
-    raise_malloc_threshold(2 * kBytes);  // as after a larger island: a plain heap block would stay
+    ASSERT_EQ(raise_malloc_threshold(2 * kBytes), 1);  // as after a larger island: a plain heap block would stay
     linalg::PageArray a;
     const long before = resident_bytes();
     a.reserve(kBytes / sizeof(double));

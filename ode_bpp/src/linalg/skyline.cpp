@@ -66,11 +66,8 @@ SkylineMatrix::SkylineMatrix(SkylineShape shape) : shape_(std::move(shape)) {
 }
 
 void SkylineMatrix::reset(const SkylineShape& shape) {
-    assert(shape.valid());
-    shape_.n = shape.n;
-    shape_.sky = shape.sky;
-    shape_.colptr = shape.colptr;
-    values_.assign(static_cast<std::size_t>(shape_.size()), 0.0);
+    reshape(shape);
+    std::fill(values_.begin(), values_.end(), 0.0);
 }
 
 void SkylineMatrix::reshape(const SkylineShape& shape) {

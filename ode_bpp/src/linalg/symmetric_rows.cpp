@@ -60,32 +60,22 @@ void SymmetricRows::assign_lower(std::vector<double>& diagonal, const std::vecto
     order_.clear();
     profile_known_ = false;
     diag_.swap(diagonal);
-    std::vector<int>&count = build_.count, &next = build_.next;
+    std::vector<int>& count = build_.count;
     count.assign(static_cast<std::size_t>(n_), 0);
     for (const LowerEntry& e : lower) {
         ++count[e.row];
         ++count[e.col];
     }
-    rowptr_.assign(static_cast<std::size_t>(n_) + 1, 0);
-    for (int i = 0; i < n_; ++i) rowptr_[i + 1] = rowptr_[i] + count[i];
-    col_.resize(static_cast<std::size_t>(rowptr_[n_]));
-    val_.resize(col_.size());
-    next.assign(rowptr_.begin(), rowptr_.end() - 1);
     // row-major order of `lower` fills each row with increasing columns: A(r, j < r) while the
     // sweep is at row r, then A(i > r, r) as it passes the later rows i
-    for (const LowerEntry& e : lower) {
-        col_[next[e.row]] = e.col;
-        val_[next[e.row]++] = e.value;
-        col_[next[e.col]] = e.row;
-        val_[next[e.col]++] = e.value;
-    }
+    fill_rows(lower, [](int i) { return i; });
 }
 
 void SymmetricRows::assign_lower(const std::vector<double>& diagonal, const std::vector<LowerEntry>& lower,
                                  const std::vector<int>& order) {
     n_ = static_cast<int>(diagonal.size());
     order_ = order;
-    std::vector<int>&to_new = build_.to_new, &count = build_.count, &next = build_.next;
+    std::vector<int>&to_new = build_.to_new, &count = build_.count;
     to_new.resize(order.size());
     for (int i = 0; i < n_; ++i) to_new[order[i]] = i;
     diag_.resize(diagonal.size());
@@ -101,15 +91,22 @@ void SymmetricRows::assign_lower(const std::vector<double>& diagonal, const std:
         else profile_[c] = std::min(profile_[c], r);
     }
     profile_known_ = true;
+    // as in the unordered assign_lower, each row fills with increasing built columns: the order
+    // in which permute_into would have copied it
+    fill_rows(lower, [&to_new](int i) { return to_new[i]; });
+}
+
+template <class ToNew>
+void SymmetricRows::fill_rows(const std::vector<LowerEntry>& lower, ToNew to_new) {
+    const std::vector<int>& count = build_.count;
+    std::vector<int>& next = build_.next;
     rowptr_.assign(static_cast<std::size_t>(n_) + 1, 0);
     for (int i = 0; i < n_; ++i) rowptr_[i + 1] = rowptr_[i] + count[i];
     col_.resize(static_cast<std::size_t>(rowptr_[n_]));
     val_.resize(col_.size());
     next.assign(rowptr_.begin(), rowptr_.end() - 1);
-    // as in the unordered assign_lower, each row fills with increasing built columns: the order
-    // in which permute_into would have copied it
     for (const LowerEntry& e : lower) {
-        const int r = to_new[e.row], c = to_new[e.col];
+        const int r = to_new(e.row), c = to_new(e.col);
         col_[next[r]] = c;
         val_[next[r]++] = e.value;
         col_[next[c]] = r;

@@ -87,6 +87,12 @@ public:
     void to_dense_lower(double* A, int lda) const;
 
 private:
+    /// Rows from the per-row entry counts in build_.count and the strictly lower entries, each
+    /// stored in rows to_new(row) and to_new(col) in the order of `lower` (so with increasing
+    /// columns when `lower` is listed row by row and to_new keeps the order). O(n + entries).
+    template <class ToNew>
+    void fill_rows(const std::vector<LowerEntry>& lower, ToNew to_new);
+
     /// Buffers of assign and assign_lower, kept with the matrix so that assigning it again
     /// allocates nothing once they have grown. Not part of the matrix's value: copies start empty.
     struct BuildBuffers {

@@ -126,6 +126,43 @@ TEST(LinalgCholesky, RemovedIndicesGiveTheFactorOfAFF) {
     }
 }
 
+/// The partial form: columns [k0, k1) in pieces give the whole factorization bit for bit, and
+/// leave the columns from k1 on holding A (what a lazily factored L0 relies on).
+TEST(LinalgCholesky, FactorsAColumnRangeExactlyAsTheWholeCall) {
+    std::mt19937 rng(27);
+    for (int trial = 0; trial < 20; ++trial) {
+        const int n = 2 + static_cast<int>(rng() % 80);
+        const Case c = make_case(n, 1 + static_cast<int>(rng() % 10), rng, trial % 2 ? 1.0 : 0.0);
+        const SkylineMatrix A_lower = trial % 4 == 0 ? from_dense(c.A, SkylineShape::dense(n))
+                                                     : linalg::load_skyline(c.rows.data(), c.lda, n, nullptr);
+        SkylineMatrix whole = A_lower;
+        ASSERT_EQ(linalg::skyline_cholesky(whole, 0, {}), -1);
+
+        SkylineMatrix pieces = A_lower;
+        const int k1 = static_cast<int>(rng() % (n + 1));
+        ASSERT_EQ(linalg::skyline_cholesky(pieces, 0, k1, {}), -1);
+        for (int k = k1; k < n; ++k)
+            for (int r = k; r <= A_lower.sky(k); ++r)
+                ASSERT_EQ(pieces.at(r, k), A_lower.at(r, k)) << "column " << k << " >= k1 = " << k1 << " was written";
+        const int k2 = k1 + static_cast<int>(rng() % (n - k1 + 1));
+        ASSERT_EQ(linalg::skyline_cholesky(pieces, k1, k2, {}), -1);
+        ASSERT_EQ(linalg::skyline_cholesky(pieces, k2, {}), -1);
+        for (int k = 0; k < n; ++k)
+            for (int r = k; r <= whole.sky(k); ++r) ASSERT_EQ(pieces.at(r, k), whole.at(r, k)) << "(" << r << "," << k << ")";
+    }
+}
+
+TEST(LinalgCholesky, ColumnRangeReportsABreakdownInsideItOnly) {
+    const int n = 6;
+    MatrixXd A = MatrixXd::Identity(n, n);
+    A(4, 3) = A(3, 4) = 1.0;  // rows 3 and 4 equal: the pivot of column 4 is zero
+    A(4, 4) = 1.0;
+    const SkylineMatrix A_lower = from_dense(A, SkylineShape::dense(n));
+    SkylineMatrix L = A_lower;
+    EXPECT_EQ(linalg::skyline_cholesky(L, 0, 4, {}), -1);
+    EXPECT_EQ(linalg::skyline_cholesky(L, 4, n, {}), 4);
+}
+
 /// Index of the first pivot of the (kept part of the) matrix that is not positive, from the
 /// smallest eigenvalue of the leading principal submatrices.
 int oracle_first_failure(const MatrixXd& A, const std::vector<int>& kept) {

@@ -87,5 +87,42 @@ TEST(PivotingOrdering, ALongRowMovedLastIsPricedAsTheColumnsItMakesReachTheBotto
     EXPECT_NE(choose_ordering(Method::Bpp, p, A, warm).back(), row);
 }
 
+/// Frozen friction's first fixed-bound solve holds every friction row at 0: the choice prices
+/// that solve at the friction rows and the later ones at the warm start's, and may move the
+/// friction rows last; whatever it picks is priced no higher than any candidate.
+TEST(PivotingOrdering, FrozenFirstSolveChoiceIsNeverPricedAboveTheCandidates) {
+    for (const auto& [links, contacts] : {std::pair{60, 30}, std::pair{40, 4}, std::pair{30, 10}}) {
+        const auto owned = problems::chain_mlcp(links, contacts);
+        const Problem p = owned.view();
+        const linalg::SymmetricRows A(p, {});
+        std::vector<char> friction(p.n, 0), none(p.n, 0);
+        for (int i = 0; i < p.n; ++i) friction[i] = owned.findex[i] >= 0;
+        const std::vector<int> chosen = choose_ordering(Method::Bpp, p, A, {}, FirstSolve::FrictionRowsTight);
+        ASSERT_TRUE(ordering::is_permutation(chosen, p.n));
+        const double price = warm_solve_price(A, chosen, none, friction);
+        for (auto kind : {ordering::OrderingKind::CuthillMcKee, ordering::OrderingKind::ReverseCuthillMcKee})
+            for (const std::vector<char>* last : {static_cast<const std::vector<char>*>(nullptr),
+                                                  static_cast<const std::vector<char>*>(&friction)})
+                EXPECT_LE(price, warm_solve_price(A, order(p, kind, last), none, friction)) << links << " links";
+    }
+}
+
+TEST(PivotingOrdering, FirstSolvePriceAddsTheFrictionRowsStepOnly) {
+    const auto owned = problems::chain_mlcp(40, 4);
+    const Problem p = owned.view();
+    const linalg::SymmetricRows A(p, {});
+    std::vector<char> friction(p.n, 0), none(p.n, 0);
+    for (int i = 0; i < p.n; ++i) friction[i] = owned.findex[i] >= 0;
+    const std::vector<int> cm = order(p, ordering::OrderingKind::CuthillMcKee);
+    const double factor_only = warm_solve_price(A, cm, none);
+    EXPECT_EQ(warm_solve_price(A, cm, none, none), factor_only);
+    EXPECT_GT(warm_solve_price(A, cm, none, friction), factor_only);
+    // the later steps at the warm start's tight rows are priced as before
+    std::vector<char> one(p.n, 0);
+    one[p.n - 1] = 1;
+    EXPECT_EQ(warm_solve_price(A, cm, one, friction) - warm_solve_price(A, cm, none, friction),
+              (kStepsPerWarmSolve - 1) / kStepsPerWarmSolve * (warm_solve_price(A, cm, one) - factor_only));
+}
+
 }  // namespace
 }  // namespace ode_bpp::ordering

@@ -155,9 +155,10 @@ struct Tuning {
     /// the skyline's set-up (ordering, shape, cost model, L0 and its copy) costs more than a dense
     /// Cholesky of the whole island. 0: always the skyline.
     int dense_island_rows = 32;
-    /// Bpp with a start: also consider orderings with the start's tight rows last (deleting them
-    /// then touches few columns), priced by the cost model against the envelope they may widen
-    /// (ordering/ordering_choice.h). False: Cuthill-McKee or its reverse only.
+    /// Bpp: also consider orderings with the start's tight rows last (deleting them then touches
+    /// few columns) and, with Frozen friction, with the friction rows last (its first fixed-bound
+    /// solve holds them at 0, so it refactors a short tail), priced by the cost model against the
+    /// envelope they may widen (ordering/ordering_choice.h). False: Cuthill-McKee or its reverse only.
     bool order_tight_last = true;
 };
 

@@ -39,10 +39,10 @@ bool is_identity_row_column(const SkylineMatrix& L, int k) {
 
 /// Zeroing the removed rows up front makes every later update of a removed row exactly zero
 /// (L(r,k) = Ap(r,k) - sum_j L(r,j) L(k,j) with both terms zero), so the main loop needs no test.
-void embed_removed(SkylineMatrix& L, int k0, const std::vector<char>& removed) {
+void embed_removed(SkylineMatrix& L, int k0, int k1, const std::vector<char>& removed) {
     if (removed.empty()) return;
     assert(static_cast<int>(removed.size()) == L.n());
-    for (int k = 0; k < L.n(); ++k) {
+    for (int k = 0; k < k1; ++k) {
         if (!removed[k]) continue;
         if (k < k0) {
             assert(is_identity_row_column(L, k));
@@ -78,10 +78,14 @@ bool pivot_is_positive(double pivot, double diagonal, int earlier_columns) {
 }  // namespace
 
 int skyline_cholesky(SkylineMatrix& L, int k0, const std::vector<char>& removed) {
-    const int n = L.n();
-    embed_removed(L, k0, removed);
-    int j_first = k0 < n ? L.shape().first_column_holding(k0) : n;
-    for (int k = k0; k < n; ++k) {
+    return skyline_cholesky(L, k0, L.n(), removed);
+}
+
+int skyline_cholesky(SkylineMatrix& L, int k0, int k1, const std::vector<char>& removed) {
+    assert(0 <= k0 && k0 <= k1 && k1 <= L.n());
+    embed_removed(L, k0, k1, removed);
+    int j_first = k0 < k1 ? L.shape().first_column_holding(k0) : k1;
+    for (int k = k0; k < k1; ++k) {
         while (L.sky(j_first) < k) ++j_first;
         if (is_removed(removed, k)) continue;
         double* column = L.column(k);

@@ -25,4 +25,10 @@ namespace ode_bpp::linalg {
 /// finite). On failure, columns k0 .. k-1 are factored and the rest is unspecified.
 int skyline_cholesky(SkylineMatrix& L, int k0, const std::vector<char>& removed);
 
+/// The same for columns k0 .. k1-1 only (k0 <= k1 <= n); columns k1 .. n-1 keep Ap. A
+/// left-looking column k reads only columns < k and Ap's column k, so finishing later with
+/// skyline_cholesky(L, k1, ...) gives the factor of one whole call, bit for bit: a factor can
+/// be computed as far as its use needs (pivoting/skyline_solver.cpp's L0).
+int skyline_cholesky(SkylineMatrix& L, int k0, int k1, const std::vector<char>& removed);
+
 }  // namespace ode_bpp::linalg

@@ -62,21 +62,49 @@ bool ordering_cannot_pay(const linalg::SymmetricRows& A) {
 
 }  // namespace
 
-double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight) {
+namespace {
+
+/// The cheaper of deleting the rows flagged in `tight` (original space) from L0 and refactoring
+/// from the first of them, in the shape of perm; 0 when none is flagged.
+double step_price(const linalg::CostModel& cost, const linalg::SkylineShape& shape, const std::vector<int>& perm,
+                  const std::vector<char>& tight) {
+    std::vector<int> tight_rows;
+    if (!tight.empty())
+        for (int i = 0; i < shape.n; ++i)
+            if (tight[perm[i]]) tight_rows.push_back(i);
+    if (tight_rows.empty()) return 0;
+    const int copy_from = shape.first_column_holding(tight_rows.front());
+    return std::min(deletion_price(cost, tight_rows, copy_from), refactor_price(cost, tight_rows, copy_from));
+}
+
+/// The warm start's tight rows with every friction row added (FirstSolve::FrictionRowsTight),
+/// or empty when the first solve holds nothing more than the warm start.
+std::vector<char> first_solve_tight(const Problem& p, const std::vector<char>& warm, FirstSolve first) {
+    if (first != FirstSolve::FrictionRowsTight || p.findex == nullptr) return {};
+    std::vector<char> tight = warm.empty() ? std::vector<char>(static_cast<std::size_t>(p.n), 0) : warm;
+    bool any = false;
+    for (int i = 0; i < p.n; ++i)
+        if (p.findex[i] >= 0) {
+            tight[i] = 1;
+            any = true;
+        }
+    return any ? tight : std::vector<char>{};
+}
+
+}  // namespace
+
+double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight,
+                        const std::vector<char>& first_tight) {
     const linalg::SkylineShape shape = linalg::SkylineShape::from_row_profile(A.row_profile_under(perm));
     const linalg::CostModel cost(shape);
-    std::vector<int> tight_rows;
-    for (int i = 0; i < shape.n; ++i)
-        if (tight[perm[i]]) tight_rows.push_back(i);
     const double factor = kRefactorUnit * cost.refactor_cost(0);
-    if (tight_rows.empty()) return factor;
-    const int copy_from = shape.first_column_holding(tight_rows.front());
-    const double step = std::min(deletion_price(cost, tight_rows, copy_from), refactor_price(cost, tight_rows, copy_from));
-    return factor + kStepsPerWarmSolve * step;
+    const double step = step_price(cost, shape, perm, tight);
+    const double first = first_tight.empty() ? step : step_price(cost, shape, perm, first_tight);
+    return factor + first + (kStepsPerWarmSolve - 1) * step;
 }
 
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
-                                 const std::vector<RowState>& warm_start) {
+                                 const std::vector<RowState>& warm_start, FirstSolve first) {
     using ordering::OrderingKind;
     if (method == Method::BppSky) return order(problem, A, OrderingKind::CuthillMcKee);
     if (method != Method::Bpp) return identity(problem.n);
@@ -85,17 +113,21 @@ std::vector<int> choose_ordering(Method method, const Problem& problem, const li
     const std::vector<int> rcm = order(problem, A, OrderingKind::ReverseCuthillMcKee);
     std::vector<int> best = smaller_envelope(A, cm, rcm);
     const std::vector<char> tight = warm_tight(warm_start);
-    if (tight.empty()) return best;
+    const std::vector<char> first_tight = first_solve_tight(problem, tight, first);
+    if (tight.empty() && first_tight.empty()) return best;
     // Moving likely-tight rows last makes deleting them cheap but can widen the envelope a lot
     // (contact rows couple bodies spread along the order): keep whichever prices lower.
-    double best_price = warm_solve_price(A, best, tight);
-    for (const std::vector<int>* base : {&cm, &rcm}) {
-        std::vector<int> candidate = *base;
-        ordering::move_flagged_last(candidate, tight);
-        const double price = warm_solve_price(A, candidate, tight);
-        if (price < best_price) {
-            best_price = price;
-            best = std::move(candidate);
+    double best_price = warm_solve_price(A, best, tight, first_tight);
+    for (const std::vector<char>* moved : {&tight, &first_tight}) {
+        if (moved->empty()) continue;
+        for (const std::vector<int>* base : {&cm, &rcm}) {
+            std::vector<int> candidate = *base;
+            ordering::move_flagged_last(candidate, *moved);
+            const double price = warm_solve_price(A, candidate, tight, first_tight);
+            if (price < best_price) {
+                best_price = price;
+                best = std::move(candidate);
+            }
         }
     }
     return best;

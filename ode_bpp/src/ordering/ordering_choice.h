@@ -8,25 +8,35 @@
 
 namespace ode_bpp::ordering {
 
+/// What a Bpp solve's first fixed-bound solve holds tight besides the warm start's tight rows.
+enum class FirstSolve {
+    AsWarmStart,        ///< nothing more
+    FrictionRowsTight,  ///< every friction row (findex >= 0): Frozen friction holds them at 0 there
+                        ///< (pivoting/friction_policy.h, solve_frozen)
+};
+
 /// perm[new] = old (n entries) for the method:
 ///  - BppChol, BppDown: the identity (Alg. 1 and Alg. 2 without skyline use no ordering);
 ///  - BppSky: Cuthill-McKee over the constraint graph (Sec. 3.4);
 ///  - Bpp: the identity wherever factoring in it costs less than computing an ordering (small
-///    islands); else the one of Cuthill-McKee and reverse
-///    Cuthill-McKee with the smaller envelope; with a
-///    warm start (original space, n entries or empty) that has tight rows, also both orders with
-///    those rows moved last (where deleting or refactoring them touches the fewest columns), and
-///    the lowest warm_solve_price wins (moving them can widen the envelope more than it saves).
+///    islands); else the one of Cuthill-McKee and reverse Cuthill-McKee with the smaller
+///    envelope; where rows are expected tight (the warm start's, original space, n entries or
+///    empty, and those of `first`), also both orders with those rows moved last (where deleting
+///    or refactoring them touches the fewest columns), and the lowest warm_solve_price wins
+///    (moving them can widen the envelope more than it saves).
 /// A: the problem's matrix in original order (for envelope sizes).
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
-                                 const std::vector<RowState>& warm_start);
+                                 const std::vector<RowState>& warm_start, FirstSolve first = FirstSolve::AsWarmStart);
 
 /// Warm-started solves take a few steps (two fixed-bound solves in Frozen mode).
 constexpr double kStepsPerWarmSolve = 3;
 
 /// Estimated price (step_cost.h units) of factoring L0 in the ordering perm (perm[new] = old) and
-/// taking kStepsPerWarmSolve steps at the tight set `tight` (original space, n flags), each the
-/// cheaper of deletion and refactoring. A: original order.
-double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight);
+/// taking kStepsPerWarmSolve steps, each the cheaper of deletion and refactoring: the first at
+/// the tight set `first_tight`, the others at `tight` (original space, n flags each; an empty
+/// first_tight: every step at `tight`). A step with no tight row solves with L0 and costs
+/// nothing more. A: original order.
+double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight,
+                        const std::vector<char>& first_tight = {});
 
 }  // namespace ode_bpp::ordering

@@ -61,8 +61,10 @@ void order(const Problem& p, const linalg::SymmetricRows& stored_A, const Option
     const bool given = orders && ordering::is_permutation(start.ordering, p.n);
     const linalg::SymmetricRows& A = stored_A.in_built_order(q.original_A);
     static const std::vector<RowState> kNoHint;
-    q.perm = given ? start.ordering
-                   : ordering::choose_ordering(strategy, p, A, o.tuning.order_tight_last ? start.states : kNoHint);
+    const bool hint = o.tuning.order_tight_last;
+    const auto first = hint && o.friction == FrictionMode::Frozen ? ordering::FirstSolve::FrictionRowsTight
+                                                                   : ordering::FirstSolve::AsWarmStart;
+    q.perm = given ? start.ordering : ordering::choose_ordering(strategy, p, A, hint ? start.states : kNoHint, first);
     q.A = &A;
     if (!is_identity(q.perm)) {
         A.permute_into(q.perm, q.permuted_A);

@@ -22,7 +22,9 @@ enum class FactorOutcome {
 class FreeSolver {
 public:
     virtual ~FreeSolver() = default;
-    /// Factors L0 L0^T = Ap + shift I once per shift (Alg. 2 line 2). False on breakdown.
+    /// Readies L0 L0^T = Ap + shift I for this shift (Alg. 2 line 2). False on breakdown. A
+    /// strategy may factor L0 only as far as its steps need it; a breakdown found later comes
+    /// out of solve_free as FactorOutcome::Breakdown, which the loop treats alike.
     virtual bool prepare(double shift) = 0;
     /// Solves (Ap + shift I)_FF x_F = rhs_F with F = { i : tight[i] == 0 } (Eq. 6).
     /// x: n entries; in: rhs at free rows (tight entries ignored); out: x_F at free rows and 0 at

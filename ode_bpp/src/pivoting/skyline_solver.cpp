@@ -72,11 +72,18 @@ public:
     SkylineSolver(const linalg::SymmetricRows& A, SkylineVariant variant, SkylineStorage& storage)
         : A_(A), variant_(variant), s_(storage) {}
 
-    /// Alg. 2 line 2: L0 L0^T = Ap + shift I inside the envelope.
+    /// Alg. 2 line 2: L0 L0^T = Ap + shift I inside the envelope. Alg. 2 and 3 (BppDown, BppSky)
+    /// delete at every step and need all of L0 at once. Bpp factors it lazily, as many leading
+    /// columns as its steps need (l0_columns_): a refactoring from column k0 reads L0's columns
+    /// < k0 alone, and only a deletion, a step with no tight row and Table 4 need all of L0.
+    /// Where every step refactors (most warm steps), L0's columns from the largest k0 on are
+    /// never factored, and a breakdown in them shows where a step needs the column (solve_free's
+    /// Breakdown) or not at all.
     bool prepare(double shift) override {
         load_matrix(shift);
         s_.L0 = s_.A_env;
-        if (linalg::skyline_cholesky(s_.L0, 0, {}) >= 0) return false;
+        l0_columns_ = 0;
+        if (variant_ != SkylineVariant::CostModel && !factor_l0_through(s_.shape.n)) return false;
         // L is not copied from L0 here (l_unset_): the first step that needs L restores all of
         // it, and a step with no tight row, which solves with L0 itself, copies nothing
         s_.L.reshape(s_.shape);
@@ -91,6 +98,7 @@ public:
         collect_tight(tight);
         for (int i : s_.tight_rows) x[i] = 0;
         if (s_.tight_rows.empty()) {  // L_FF = L0 itself, a fresh factor
+            if (!factor_l0_through(s_.shape.n)) return breakdown();
             last_factor_ = &s_.L0;
             linalg::skyline_solve(s_.L0, x.data());
             return FactorOutcome::Refactored;
@@ -99,10 +107,7 @@ public:
         // A refactor the cost model chose may meet a pivot that deletion (a rank-1 update,
         // which only adds) never would: delete instead. Only the accuracy retry reports it.
         if (outcome == FactorOutcome::Breakdown && !fresh) outcome = delete_rows();
-        if (outcome == FactorOutcome::Breakdown) {
-            last_factor_ = nullptr;
-            return outcome;
-        }
+        if (outcome == FactorOutcome::Breakdown) return breakdown();
         last_factor_ = &s_.L;
         linalg::skyline_solve(s_.L, x.data());
         return outcome;
@@ -116,6 +121,7 @@ public:
     /// Table 4: L0 with every tight row deleted against a fresh factor of A_FF.
     double factor_error(const std::vector<char>& tight) const override {
         SkylineMatrix deleted = s_.L0;
+        if (linalg::skyline_cholesky(deleted, l0_columns_, {}) >= 0) return std::numeric_limits<double>::quiet_NaN();
         std::vector<double> work;
         for (int i = 0; i < s_.shape.n; ++i)
             if (tight[i]) linalg::skyline_delete_row(deleted, i, work);
@@ -164,6 +170,7 @@ private:
     /// Alg. 2 lines 7-11: L = L0 (BppDown: all of it, as the paper copies; else only the tail
     /// and the rows that differ), then DOWNDATE for each i in T, ascending.
     FactorOutcome delete_rows() {
+        if (!factor_l0_through(s_.shape.n)) return FactorOutcome::Breakdown;
         if (variant_ == SkylineVariant::DenseDelete) {
             s_.L.copy_tail_from(s_.L0, 0);
         } else {
@@ -181,6 +188,7 @@ private:
     /// >= k0 from Ap, then Cholesky from k0 with the tight rows removed.
     FactorOutcome refactor_tail(const std::vector<char>& tight) {
         const int k0 = s_.tight_rows.front();
+        if (!factor_l0_through(k0)) return FactorOutcome::Breakdown;
         const int from = copy_from();
         copy_columns(s_.L0, from, k0);
         s_.L.copy_rows_from(s_.L0, s_.dirty_rows, from);
@@ -198,6 +206,20 @@ private:
         return true;
     }
 #endif
+
+    /// L0's columns < k1 factored (skyline_cholesky's partial form: the same values as one whole
+    /// factorization). False when one of them breaks down: Ap + shift I is not numerically SPD.
+    bool factor_l0_through(int k1) {
+        if (k1 <= l0_columns_) return true;
+        if (linalg::skyline_cholesky(s_.L0, l0_columns_, k1, {}) >= 0) return false;
+        l0_columns_ = k1;
+        return true;
+    }
+
+    FactorOutcome breakdown() {
+        last_factor_ = nullptr;
+        return FactorOutcome::Breakdown;
+    }
 
     void mark_dirty() {
         l_unset_ = false;
@@ -219,6 +241,7 @@ private:
     /// The buffers: shape, cost model, A's envelope, L0, the working factor L and scratch.
     SkylineStorage& s_;
     int dirty_from_ = 0;
+    int l0_columns_ = 0;    ///< L0's columns factored so far (prepare: none; factor_l0_through)
     bool l_unset_ = false;  ///< L holds no values since prepare (copy_from)
     const SkylineMatrix* last_factor_ = nullptr;  ///< L_FF of the latest successful solve_free
 };

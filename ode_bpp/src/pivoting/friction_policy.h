@@ -66,6 +66,8 @@ private:
     LemkeSolution dense_lemke(const FrictionLcp& lcp);
     LemkeSolution sparse_lemke(const FrictionLcp& lcp, const std::vector<char>& guess);
     PolicyOutcome outer_rounds(std::vector<RowState>& states, std::vector<double>& x, bool budget_spent);
+    /// A linked solve from the outer rounds' consistent answer, kept where it finishes.
+    void certify_rounds(std::vector<RowState>& states, std::vector<double>& x);
     /// Options::max_pivots, at least 1: the budget of each fixed-bound solve.
     int budget() const { return std::max(1, options_.max_pivots); }
     /// An upper bound of the friction LCP's size (friction_lcp.h).

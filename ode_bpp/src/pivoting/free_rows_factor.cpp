@@ -35,12 +35,17 @@ bool FreeRowsFactor::refresh() {
 bool FreeRowsFactor::add(int i) {
     const linalg::SymmetricRows& A = *lcp_->A;
     const int m = factor_.size();
-    std::fill(column_.begin(), column_.begin() + m, 0.0);
+    int first = m;  // the column's first non-zero in F's order: the new row's envelope starts there
+    for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+        const int p = position_[A.col(k)];
+        if (p >= 0) first = std::min(first, p);
+    }
+    std::fill(column_.begin() + first, column_.begin() + m, 0.0);
     for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
         const int p = position_[A.col(k)];
         if (p >= 0) column_[p] = A.val(k);
     }
-    if (!factor_.append(column_.data(), A.diag(i) + lcp_->shift)) return false;
+    if (!factor_.append(column_.data(), first, A.diag(i) + lcp_->shift)) return false;
     position_[i] = m;
     members_.push_back(i);
     if (tight_x_[i] != 0) add_column(i, -tight_x_[i]);

@@ -5,6 +5,16 @@
 
 namespace ode_bpp::pivoting {
 
+namespace {
+
+/// Rows joining F out of order widen the factor's envelope (each spans from its first neighbour
+/// in F to the end). Once the stored envelope exceeds this multiple of its size at the last
+/// refresh (or than twice the island's rows), F is refactored in increasing index: a
+/// factorization on the envelope costs about as much as a few solves on the widened one.
+constexpr std::size_t kReorderGrowth = 2;
+
+}  // namespace
+
 bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x) {
     lcp_ = &lcp;
     const int n = lcp.n();
@@ -28,11 +38,19 @@ bool FreeRowsFactor::refresh() {
     lcp_->A->multiply(tight_x_, 0, tight_product_);
     for (int i = 0; i < n; ++i) tight_product_[i] -= lcp_->A->diag(i) * tight_x_[i];
     for (int i : refresh_rows_)
-        if (!add(i)) return false;
+        if (!append_row(i)) return false;
+    refreshed_entries_ = factor_.stored_entries();
     return true;
 }
 
 bool FreeRowsFactor::add(int i) {
+    if (!append_row(i)) return false;
+    const std::size_t rows = static_cast<std::size_t>(lcp_->n());
+    if (factor_.stored_entries() > kReorderGrowth * std::max(refreshed_entries_, rows)) return refresh();
+    return true;
+}
+
+bool FreeRowsFactor::append_row(int i) {
     const linalg::SymmetricRows& A = *lcp_->A;
     const int m = factor_.size();
     int first = m;  // the column's first non-zero in F's order: the new row's envelope starts there

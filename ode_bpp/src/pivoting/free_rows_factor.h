@@ -48,6 +48,7 @@ public:
 
 private:
     void add_column(int i, double factor);  ///< tight_product_ += factor A(:, i), off the diagonal
+    bool append_row(int i);                 ///< add() without the reordering check
 
     const BoxedLcp* lcp_ = nullptr;
     linalg::IncrementalCholesky factor_;
@@ -57,6 +58,7 @@ private:
     std::vector<double> tight_product_;   ///< A x_T without the diagonal: on F, A_FT x_T
     std::vector<double> column_;
     std::vector<int> refresh_rows_;
+    std::size_t refreshed_entries_ = 0;   ///< the factor's stored entries after the last refresh()
     mutable std::vector<double> rhs_;
 };
 

@@ -1,8 +1,13 @@
-// IncrementalCholesky: after any sequence of appends and removals, solve() is M_SS⁻¹ in S's
-// order (against Eigen's LLT of M_SS gathered afresh), and a dependent row is refused.
+// IncrementalCholesky: after any sequence of appends (in increasing index or out of order) and
+// removals (first, last, middle or random positions), the factor is the Cholesky factor of M_SS in
+// S's order (against Eigen's LLT of M_SS gathered afresh, and L Lᵀ reconstructed from the
+// factor's own entries), solve() is M_SS⁻¹, the recorded envelope holds every non-zero of that
+// factor, and a dependent row is refused. Banded matrices (small envelopes) and arbitrary sparse
+// and dense SPD matrices.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include "linalg/incremental_cholesky.h"
@@ -11,22 +16,90 @@
 namespace ode_bpp::test {
 namespace {
 
-/// Appends index j of M to the factor of M_SS.
+/// Random SPD n x n matrix with off-diagonal entries at random places (probability `density`),
+/// so that its envelope is not its pattern: diagonal dominance, margin 0.5.
+MatrixXd random_sparse_spd(int n, double density, std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(-1.0, 1.0), coin(0.0, 1.0);
+    MatrixXd A = MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < i; ++j)
+            if (coin(rng) < density) A(i, j) = A(j, i) = u(rng);
+    for (int i = 0; i < n; ++i) A(i, i) = 0.5 + A.row(i).cwiseAbs().sum();
+    return A;
+}
+
+/// M_SS in S's order.
+MatrixXd gathered(const MatrixXd& M, const std::vector<int>& S) {
+    const int m = static_cast<int>(S.size());
+    MatrixXd M_SS(m, m);
+    for (int a = 0; a < m; ++a)
+        for (int b = 0; b < m; ++b) M_SS(a, b) = M(S[a], S[b]);
+    return M_SS;
+}
+
+/// Position of the first non-zero of row a of M_SS (a when there is none before the diagonal).
+int first_nonzero(const MatrixXd& M_SS, int a) {
+    int k = 0;
+    while (k < a && M_SS(a, k) == 0.0) ++k;
+    return k;
+}
+
+/// Appends index j of M to the factor of M_SS, passing its column from its first non-zero on;
+/// the entries before it are NaN, so that reading them would show.
 bool append(linalg::IncrementalCholesky& f, const MatrixXd& M, std::vector<int>& S, int j) {
-    std::vector<double> column;
-    for (int i : S) column.push_back(M(i, j));
-    if (!f.append(column.data(), M(j, j))) return false;
+    const int m = static_cast<int>(S.size());
+    int first = 0;
+    while (first < m && M(S[first], j) == 0.0) ++first;
+    std::vector<double> column(static_cast<std::size_t>(m), std::numeric_limits<double>::quiet_NaN());
+    for (int k = first; k < m; ++k) column[k] = M(S[k], j);
+    if (!f.append(column.data(), first, M(j, j))) return false;
     S.push_back(j);
     return true;
+}
+
+/// The factor's L as a dense matrix, through entry().
+MatrixXd factor_of(const linalg::IncrementalCholesky& f) {
+    const int m = f.size();
+    MatrixXd L = MatrixXd::Zero(m, m);
+    for (int i = 0; i < m; ++i)
+        for (int k = 0; k <= i; ++k) L(i, k) = f.entry(i, k);
+    return L;
+}
+
+void expect_factor(const linalg::IncrementalCholesky& f, const MatrixXd& M, const std::vector<int>& S) {
+    const int m = static_cast<int>(S.size());
+    ASSERT_EQ(f.size(), m);
+    if (m == 0) return;
+    const MatrixXd M_SS = gathered(M, S);
+    const MatrixXd L = factor_of(f);
+    const MatrixXd oracle = oracle_factor(M_SS);
+    const double tol = factor_tolerance(M_SS, oracle.cwiseAbs().maxCoeff());
+    EXPECT_LT((L - oracle).cwiseAbs().maxCoeff(), tol);
+    // backward stability, |L Lᵀ - M_SS| <~ m eps |L| |L|ᵀ, with room for the updates' rounding
+    const double reconstruction_tol = 100.0 * m * std::numeric_limits<double>::epsilon() *
+                                      (L.cwiseAbs() * L.cwiseAbs().transpose()).maxCoeff();
+    EXPECT_LT((L * L.transpose() - M_SS).cwiseAbs().maxCoeff(), reconstruction_tol);
+    std::size_t stored = 0;
+    for (int i = 0; i < m; ++i) {
+        // every non-zero of the factor (whose envelope is M_SS's) lies inside the recorded one
+        EXPECT_LE(f.first(i), first_nonzero(M_SS, i)) << "row " << i;
+        for (int k = 0; k < f.first(i); ++k) ASSERT_EQ(oracle(i, k), 0.0) << "row " << i << " column " << k;
+        stored += static_cast<std::size_t>(i - f.first(i) + 1);
+    }
+    EXPECT_EQ(f.stored_entries(), stored);
+}
+
+/// After appends in increasing index only, the recorded envelope is M_SS's exactly.
+void expect_tight_envelope(const linalg::IncrementalCholesky& f, const MatrixXd& M, const std::vector<int>& S) {
+    const MatrixXd M_SS = gathered(M, S);
+    for (int i = 0; i < f.size(); ++i) EXPECT_EQ(f.first(i), first_nonzero(M_SS, i)) << "row " << i;
 }
 
 void expect_solves(const linalg::IncrementalCholesky& f, const MatrixXd& M, const std::vector<int>& S, std::mt19937& rng) {
     const int m = static_cast<int>(S.size());
     ASSERT_EQ(f.size(), m);
     if (m == 0) return;
-    MatrixXd M_SS(m, m);
-    for (int a = 0; a < m; ++a)
-        for (int b = 0; b < m; ++b) M_SS(a, b) = M(S[a], S[b]);
+    const MatrixXd M_SS = gathered(M, S);
     std::uniform_real_distribution<double> u(-1, 1);
     Eigen::VectorXd rhs(m);
     for (int a = 0; a < m; ++a) rhs[a] = u(rng);
@@ -37,33 +110,83 @@ void expect_solves(const linalg::IncrementalCholesky& f, const MatrixXd& M, cons
     for (int a = 0; a < m; ++a) EXPECT_NEAR(x[a], expected[a], tol) << "position " << a;
 }
 
-TEST(LinalgIncrementalCholesky, AppendsAndRemovalsKeepTheFactorOfTheSubmatrix) {
+/// Random appends (out of order) and removals (random positions) from a random half of M's rows.
+void random_moves(const MatrixXd& M, std::mt19937& rng) {
+    const int n = static_cast<int>(M.rows());
+    linalg::IncrementalCholesky f;
+    f.reset(n);
+    std::vector<int> S, outside;
+    for (int i = 0; i < n; ++i) (rng() % 2 ? S : outside).push_back(i);
+    std::vector<int> start = S;
+    S.clear();
+    for (int i : start) ASSERT_TRUE(append(f, M, S, i));
+    expect_tight_envelope(f, M, S);
+    expect_factor(f, M, S);
+    expect_solves(f, M, S, rng);
+    for (int move = 0; move < 3 * n; ++move) {
+        if (!outside.empty() && (S.empty() || rng() % 2)) {
+            const std::size_t k = rng() % outside.size();
+            ASSERT_TRUE(append(f, M, S, outside[k]));
+            outside.erase(outside.begin() + static_cast<std::ptrdiff_t>(k));
+        } else {
+            const int p = static_cast<int>(rng() % S.size());
+            f.remove(p);
+            outside.push_back(S[p]);
+            S.erase(S.begin() + p);
+        }
+        expect_factor(f, M, S);
+        expect_solves(f, M, S, rng);
+    }
+}
+
+TEST(LinalgIncrementalCholesky, RandomMovesOnBandedMatrices) {
     std::mt19937 rng(11);
     for (int trial = 0; trial < 20; ++trial) {
         const int n = 5 + static_cast<int>(rng() % 40);
-        const MatrixXd M = random_envelope_spd(n, n, rng, 0.5, 1.0);
-        linalg::IncrementalCholesky f;
-        f.reset(n);
-        std::vector<int> S, outside;
-        for (int i = 0; i < n; ++i) (rng() % 2 ? S : outside).push_back(i);
-        std::vector<int> start = S;
-        S.clear();
-        for (int i : start) ASSERT_TRUE(append(f, M, S, i));
-        expect_solves(f, M, S, rng);
-        for (int move = 0; move < 3 * n; ++move) {
-            if (!outside.empty() && (S.empty() || rng() % 2)) {
-                const std::size_t k = rng() % outside.size();
-                ASSERT_TRUE(append(f, M, S, outside[k]));
-                outside.erase(outside.begin() + static_cast<std::ptrdiff_t>(k));
-            } else {
-                const int p = static_cast<int>(rng() % S.size());
-                f.remove(p);
-                outside.push_back(S[p]);
-                S.erase(S.begin() + p);
-            }
-            expect_solves(f, M, S, rng);
-        }
+        random_moves(random_envelope_spd(n, 1 + static_cast<int>(rng() % 6), rng, 0.5, 1.0), rng);
     }
+}
+
+TEST(LinalgIncrementalCholesky, RandomMovesOnArbitrarySpdMatrices) {
+    std::mt19937 rng(12);
+    for (int trial = 0; trial < 20; ++trial) {
+        const int n = 5 + static_cast<int>(rng() % 40);
+        if (trial % 2 == 0) random_moves(random_envelope_spd(n, n, rng, 0.5, 1.0), rng);
+        else random_moves(random_sparse_spd(n, 0.1, rng), rng);
+    }
+}
+
+TEST(LinalgIncrementalCholesky, RemovesTheFirstLastAndMiddleRowAndAppendsOutOfOrder) {
+    std::mt19937 rng(13);
+    const int n = 30;
+    const MatrixXd M = random_envelope_spd(n, 3, rng, 0.5, 1.0);
+    linalg::IncrementalCholesky f;
+    f.reset(n);
+    std::vector<int> S;
+    for (int i = 0; i < n; ++i) ASSERT_TRUE(append(f, M, S, i));
+    expect_tight_envelope(f, M, S);
+    expect_factor(f, M, S);
+    const auto remove_at = [&](int p) {
+        f.remove(p);
+        S.erase(S.begin() + p);
+        expect_factor(f, M, S);
+        expect_solves(f, M, S, rng);
+    };
+    remove_at(0);
+    remove_at(static_cast<int>(S.size()) - 1);
+    remove_at(static_cast<int>(S.size()) / 2);  // index 15: rows 16 .. 18 may lean on it
+    remove_at(static_cast<int>(S.size()) / 2);  // index 14
+    // back as the last rows: their envelopes start at their first neighbour in S
+    for (int j : {15, 0, 29, 14}) {
+        ASSERT_TRUE(append(f, M, S, j));
+        expect_factor(f, M, S);
+        expect_solves(f, M, S, rng);
+    }
+    const MatrixXd M_SS = gathered(M, S);
+    for (int i = f.size() - 4; i < f.size(); ++i) EXPECT_EQ(f.first(i), first_nonzero(M_SS, i)) << "appended row " << i;
+    // the envelope is work, not the dense triangle: 29 banded rows plus the four appended ones
+    EXPECT_LT(f.stored_entries(), static_cast<std::size_t>(30 * 4 + 4 * 30));
+    while (f.size() > 0) remove_at(0);
 }
 
 TEST(LinalgIncrementalCholesky, RefusesARowDependentOnTheSet) {

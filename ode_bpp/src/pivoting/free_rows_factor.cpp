@@ -5,6 +5,16 @@
 
 namespace ode_bpp::pivoting {
 
+namespace {
+
+/// Rows joining F out of order widen the factor's envelope (each spans from its first neighbour
+/// in F to the end). Once the stored envelope exceeds this multiple of its size at the last
+/// refresh (or than twice the island's rows), F is refactored in increasing index: a
+/// factorization on the envelope costs about as much as a few solves on the widened one.
+constexpr std::size_t kReorderGrowth = 2;
+
+}  // namespace
+
 bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x) {
     lcp_ = &lcp;
     const int n = lcp.n();
@@ -28,19 +38,32 @@ bool FreeRowsFactor::refresh() {
     lcp_->A->multiply(tight_x_, 0, tight_product_);
     for (int i = 0; i < n; ++i) tight_product_[i] -= lcp_->A->diag(i) * tight_x_[i];
     for (int i : refresh_rows_)
-        if (!add(i)) return false;
+        if (!append_row(i)) return false;
+    refreshed_entries_ = factor_.stored_entries();
     return true;
 }
 
 bool FreeRowsFactor::add(int i) {
+    if (!append_row(i)) return false;
+    const std::size_t rows = static_cast<std::size_t>(lcp_->n());
+    if (factor_.stored_entries() > kReorderGrowth * std::max(refreshed_entries_, rows)) return refresh();
+    return true;
+}
+
+bool FreeRowsFactor::append_row(int i) {
     const linalg::SymmetricRows& A = *lcp_->A;
     const int m = factor_.size();
-    std::fill(column_.begin(), column_.begin() + m, 0.0);
+    int first = m;  // the column's first non-zero in F's order: the new row's envelope starts there
+    for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
+        const int p = position_[A.col(k)];
+        if (p >= 0) first = std::min(first, p);
+    }
+    std::fill(column_.begin() + first, column_.begin() + m, 0.0);
     for (int k = A.row_begin(i); k < A.row_end(i); ++k) {
         const int p = position_[A.col(k)];
         if (p >= 0) column_[p] = A.val(k);
     }
-    if (!factor_.append(column_.data(), A.diag(i) + lcp_->shift)) return false;
+    if (!factor_.append(column_.data(), first, A.diag(i) + lcp_->shift)) return false;
     position_[i] = m;
     members_.push_back(i);
     if (tight_x_[i] != 0) add_column(i, -tight_x_[i]);

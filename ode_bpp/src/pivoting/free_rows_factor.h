@@ -1,10 +1,13 @@
-// A dense Cholesky factor of (A + shift I)_FF for a free set F that changes by one row at a time
+// A Cholesky factor of (A + shift I)_FF for a free set F that changes by one row at a time
 // (linalg/incremental_cholesky.h), and Eq. 6 solved with it: the factor behind the active-set
-// stage (active_set.h), where each step moves one row between F and T, O(|F|²) instead of a
-// deletion from L0 or a refactorization per step. The right-hand side's A_FT x_T is kept up to
-// date by one row of A per change of T, O(row entries), instead of a product with A per solve.
+// stage (active_set.h), where each step moves one row between F and T at the cost of the
+// factor's envelope, instead of a deletion from L0 or a refactorization per step. The
+// right-hand side's A_FT x_T is kept up to date by one row of A per change of T, O(row entries),
+// instead of a product with A per solve.
 //
-// Index space: the permuted space of the BoxedLcp.
+// Index space: the permuted space of the BoxedLcp, whose order (Cuthill-McKee) keeps A's envelope
+// small: F factored in increasing index has the envelope of A_FF (a subset of A's), and a row
+// joining F as the last one spans from its first neighbour in F on.
 #pragma once
 
 #include <vector>
@@ -38,13 +41,14 @@ public:
     bool accurate(const Iterate& it, double tolerance) const;
     /// Refactors F afresh and recomputes A_FT x_T (after !accurate()); false on breakdown.
     bool refresh();
-    /// Gives the dense factor's storage back (IncrementalCholesky::release): a stage that runs
-    /// now and then on a large island does not keep 8 |F|² bytes resident for the rest of the
-    /// run. The next reset() allocates afresh.
+    /// Gives the factor's storage back (IncrementalCholesky::release): a stage that runs now and
+    /// then on a large island does not keep its factor resident for the rest of the run. The
+    /// next reset() allocates afresh.
     void release() { factor_.release(); }
 
 private:
     void add_column(int i, double factor);  ///< tight_product_ += factor A(:, i), off the diagonal
+    bool append_row(int i);                 ///< add() without the reordering check
 
     const BoxedLcp* lcp_ = nullptr;
     linalg::IncrementalCholesky factor_;
@@ -54,6 +58,7 @@ private:
     std::vector<double> tight_product_;   ///< A x_T without the diagonal: on F, A_FT x_T
     std::vector<double> column_;
     std::vector<int> refresh_rows_;
+    std::size_t refreshed_entries_ = 0;   ///< the factor's stored entries after the last refresh()
     mutable std::vector<double> rhs_;
 };
 

@@ -136,5 +136,23 @@ TEST(OrderingOrderRows, ExpandBlocksListsRowsBlockByBlock) {
     EXPECT_EQ(ordering::expand_blocks({3, 0, 2, 1}, block_row.data(), 4), (std::vector<int>{5, 0, 1, 2, 3, 4}));
 }
 
+TEST(OrderingOrderRows, IsPermutationOnEitherSideOfItsStackMarks) {
+    for (int n : {0, 1, 7, 511, 512, 513, 2000}) {
+        std::vector<int> perm(static_cast<std::size_t>(n));
+        for (int i = 0; i < n; ++i) perm[i] = n - 1 - i;
+        EXPECT_TRUE(ordering::is_permutation(perm, n)) << n;
+        EXPECT_FALSE(ordering::is_permutation(perm, n + 1)) << n;
+        if (n < 2) continue;
+        std::vector<int> repeated = perm;
+        repeated[n / 2] = repeated[0];
+        EXPECT_FALSE(ordering::is_permutation(repeated, n)) << n;
+        std::vector<int> outside = perm;
+        outside[n - 1] = n;
+        EXPECT_FALSE(ordering::is_permutation(outside, n)) << n;
+        outside[n - 1] = -1;
+        EXPECT_FALSE(ordering::is_permutation(outside, n)) << n;
+    }
+}
+
 }  // namespace
 }  // namespace ode_bpp::test

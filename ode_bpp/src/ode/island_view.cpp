@@ -24,8 +24,11 @@ Problem IslandView::of(const dMLCP& p, bool dense_lower, const std::vector<int>&
     q.n = p.m;
     q.A = p.A;
     q.lda = p.skip;
+    // The buffers only grow: islands of changing sizes would otherwise pay a zero fill at every
+    // growth, and every entry read is written first (the lower triangle by the assembly, the
+    // blocks below).
     if (has_sparse_form(p) && dense_lower) {
-        dense_.resize(static_cast<std::size_t>(p.m) * p.m);
+        if (const auto entries = static_cast<std::size_t>(p.m) * p.m; dense_.size() < entries) dense_.resize(entries);
         assemble_dense_lower(p, dense_.data(), p.m, assembly_);
         q.A = dense_.data();
         q.lda = p.m;
@@ -39,8 +42,10 @@ Problem IslandView::of(const dMLCP& p, bool dense_lower, const std::vector<int>&
     q.findex = p.findex;
     q.nub = p.nub;
     if (p.joints != nullptr && p.nj > 0) {
-        block_row_.assign(static_cast<std::size_t>(p.nj) + 1, p.m);
-        block_body_.resize(2 * static_cast<std::size_t>(p.nj));
+        const auto nj = static_cast<std::size_t>(p.nj);
+        if (block_row_.size() < nj + 1) block_row_.resize(nj + 1);
+        if (block_body_.size() < 2 * nj) block_body_.resize(2 * nj);
+        block_row_[nj] = p.m;
         for (int k = 0; k < p.nj; ++k) {
             block_row_[k] = p.joints[k].row;
             block_body_[2 * k] = p.joints[k].body[0];

@@ -32,7 +32,7 @@ public:
 private:
     std::vector<int> block_row_, block_body_;
     linalg::SymmetricRows assembled_;
-    std::vector<double> dense_;  ///< m x m, row stride m: the lower triangle of a small island
+    std::vector<double> dense_;  ///< row stride m, m x m entries or more: the lower triangle of a small island
     AssemblyBuffers assembly_;
 };
 

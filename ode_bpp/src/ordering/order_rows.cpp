@@ -1,6 +1,7 @@
 #include "ordering/order_rows.h"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 
 #include "ordering/cuthill_mckee.h"
@@ -42,7 +43,16 @@ void move_flagged_last(std::vector<int>& perm, const std::vector<char>& flagged)
 
 bool is_permutation(const std::vector<int>& perm, int n) {
     if (static_cast<int>(perm.size()) != n) return false;
-    std::vector<char> seen(static_cast<std::size_t>(n), 0);
+    // the hook asks once per island: an island of up to kMarksOnStack rows allocates nothing
+    constexpr int kMarksOnStack = 512;
+    std::array<char, kMarksOnStack> on_stack;
+    std::vector<char> on_heap;
+    char* seen = on_stack.data();
+    if (n > kMarksOnStack) {
+        on_heap.resize(static_cast<std::size_t>(n));
+        seen = on_heap.data();
+    }
+    std::fill_n(seen, n, 0);
     for (int v : perm) {
         if (v < 0 || v >= n || seen[v]) return false;
         seen[v] = 1;

@@ -91,6 +91,8 @@ Status status_of(PolicyOutcome outcome, double shift) {
 
 /// What the policy's outcome means, for Result::message; empty on a plain convergence.
 std::string message_of(PolicyOutcome outcome, double shift, const Options& o, int rounds, const std::string& note) {
+    // nothing to say, so no stream: building one costs about as much as a 6-row island's pivoting
+    if (outcome == PolicyOutcome::Converged && !(shift > 0)) return {};
     std::ostringstream m;
     if (outcome == PolicyOutcome::NotSpd) {
         m << "Cholesky breaks down even on A + " << tuning::kLastShift

@@ -54,6 +54,30 @@ TEST(PivotingActiveSet, WithoutItTheSameIslandsRunOutOfBudget) {
     for (const char* name : kOverBudget) EXPECT_EQ(solve_captured(name, false).status, Status::MaxIterations) << name;
 }
 
+// Islands of thousands of rows have the stage too (its factor is kept on the envelope): a chain
+// of over 1,600 rows with contacts, one plain step from a start with every bounded row at its
+// upper bound, then the active set, which converges to the answer the plain loop reaches alone.
+TEST(PivotingActiveSet, TakesIslandsOfThousandsOfRows) {
+    const auto owned = problems::chain_mlcp(600, 200);
+    const Problem p = owned.view();
+    ASSERT_GT(p.n, 1600) << "above the stage's former 1,500-row limit";
+    Options o;
+    o.dantzig_fallback = false;
+    o.max_pivots = 1000;
+    std::vector<double> reference(static_cast<std::size_t>(p.n)), x(static_cast<std::size_t>(p.n));
+    const Result plain = solve(p, o, reference.data());
+    ASSERT_EQ(plain.status, Status::Converged) << plain.message;
+    o.tuning.rescue_after = 1;
+    Start wrong;  // every bounded row at its upper bound: one plain step does not finish from there
+    wrong.states.assign(static_cast<std::size_t>(p.n), RowState::AtHi);
+    std::fill(wrong.states.begin(), wrong.states.begin() + p.nub, RowState::Free);
+    const Result r = solve(p, o, x.data(), wrong);
+    ASSERT_EQ(r.status, Status::Converged) << r.message;
+    EXPECT_GT(r.pivoting.update_steps, 0) << "the active set did not run";
+    EXPECT_EQ(r.fallback, Fallback::None);
+    EXPECT_LT(problems::max_abs_diff(x, reference), 1e-6 * (1 + problems::inf_norm(reference)));
+}
+
 // With one plain step before it, the active set answers most of the problem on random boxed
 // MLCPs: the answer is Dantzig's (both solve the same frozen-friction problem exactly).
 TEST(PivotingActiveSet, AgreesWithDantzigWhenItDoesMostOfTheWork) {

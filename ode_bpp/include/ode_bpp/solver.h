@@ -132,8 +132,8 @@ struct Tuning {
     int rescue_after = 8;
     /// Where that plain attempt does not converge, an active-set method on the box QP from its
     /// least infeasible iterate: it terminates finitely, each step adding or removing one row of
-    /// a dense factor of A_FF (pivoting/active_set.h), before the regularization continuation.
-    /// Islands up to 1,500 rows. Needs rescue_after > 0.
+    /// a factor of A_FF kept on its envelope (pivoting/active_set.h), before the regularization
+    /// continuation. Islands of any size. Needs rescue_after > 0.
     bool active_set = true;
     /// Consistent friction: most outer bound updates, damped (new = (1-d)*old + d*target).
     int max_friction_rounds = 100;

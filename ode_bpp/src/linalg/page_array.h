@@ -1,8 +1,8 @@
 // An array of doubles whose storage, when it is large, is an anonymous memory mapping of its own,
 // so that release() gives the pages back to the system at once.
 //
-// Why: a scratch buffer sized for the largest island met so far (the active set's dense factor,
-// 8 n² bytes: 7 MB at 940 rows) would otherwise stay resident for the rest of the run once freed,
+// Why: a scratch buffer sized for the largest island met so far (the active set's factor, up to
+// 8 n² bytes on a dense envelope: 7 MB at 940 rows) would otherwise stay resident for the rest of the run once freed,
 // because malloc keeps freed memory in the process (glibc returns only the top of its heap, past
 // a threshold that grows with the blocks it has mapped). A stage that runs now and then on one
 // large island then raises the process's memory for good (docs/architecture.md, conventions: memory).

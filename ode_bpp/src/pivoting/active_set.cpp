@@ -157,7 +157,7 @@ private:
 }  // namespace
 
 bool active_set_applies(const BoxedLcp& lcp) {
-    return !lcp.has_moving_bounds() && lcp.n() <= tuning::kActiveSetMaxRows;
+    return !lcp.has_moving_bounds();
 }
 
 LoopOutcome active_set(const BoxedLcp& lcp, const PivotSettings& settings, std::vector<RowState>& states,

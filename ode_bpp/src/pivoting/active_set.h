@@ -39,8 +39,10 @@
 
 namespace ode_bpp::pivoting {
 
-/// True when active_set can take this problem on: fixed bounds only (no moving friction bounds),
-/// and small enough for a dense factor (tuning::kActiveSetMaxRows).
+/// True when active_set can take this problem on: fixed bounds only (no moving friction bounds).
+/// Any size: its factor is kept on the envelope (linalg/incremental_cholesky.h), at most about
+/// twice that of A_FF in the island's order (free_rows_factor.h), the memory the loop's skyline
+/// factors take anyway.
 bool active_set_applies(const BoxedLcp& lcp);
 
 /// The buffers of active_set (active_set.cpp), kept by the caller so that their capacity

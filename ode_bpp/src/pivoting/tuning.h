@@ -34,8 +34,6 @@ constexpr int kMurtyPatience = 2;
 /// what one island may cost.
 constexpr int kActiveSetStepsPerRow = 10;
 constexpr int kActiveSetStepsExtra = 50;
-/// Largest island (rows) whose free set is factored densely for the active set (8 n² bytes).
-constexpr int kActiveSetMaxRows = 1500;
 
 // ---- friction (friction_policy.h) --------------------------------------------------------------
 /// A linked solve (Consistent friction) may take this many times Options::max_pivots.

@@ -105,6 +105,22 @@ TEST(PivotingActiveSet, AgreesWithDantzigWhenItDoesMostOfTheWork) {
     EXPECT_GT(used, 0);  // the path under test was taken
 }
 
+// The captured tail islands: projecting the plain attempt's iterate onto the bounds pushes many
+// rows that belong free onto a bound; they leave T together (active_set.h), not one per step
+// (main before that took 41 and 36 active-set steps on these two).
+TEST(PivotingActiveSet, FreesTheRowsTheProjectionTightenedTogether) {
+    const struct {
+        const char* name;
+        int max_steps;
+    } islands[] = {{"forwarder-frozen-over-budget-226.mlcp", 20}, {"bin-frozen-over-budget-93.mlcp", 24}};
+    for (const auto& island : islands) {
+        const Result r = solve_captured(island.name, true);
+        EXPECT_EQ(r.status, Status::Converged) << island.name << ": " << r.message;
+        EXPECT_GT(r.pivoting.murty_pivots, 0) << island.name;
+        EXPECT_LE(r.pivoting.murty_pivots, island.max_steps) << island.name;
+    }
+}
+
 namespace direct {
 
 using pivoting::LoopOutcome;

@@ -42,6 +42,7 @@ public:
         project(states, x);
         if (!factor_.reset(lcp_, states, x)) return give_up(states, x, LoopOutcome::Breakdown);
         bool fresh = true;  // the factor has not been updated since it was built
+        int polish_rounds = tuning::kPolishRounds;
         for (int step = 0; step < settings_.max_pivots; ++step) {
             ++counters_.pivots;
             ++counters_.murty_pivots;
@@ -73,7 +74,7 @@ public:
             x.swap(ws_.target);
             tighten_rows_on_bounds(states, x);
             classify_iterate(lcp_, ws_.it, states, x, settings_.tolerance, ws_.inf);
-            if (ws_.inf.count() == 0) return LoopOutcome::Converged;
+            if (ws_.inf.count() == 0 && !polish(states, x, polish_rounds)) return converged(states);
             if (!release(states)) return give_up(states, x, LoopOutcome::Breakdown);
             fresh = false;
         }
@@ -92,6 +93,27 @@ private:
             else if (x[i] == lcp_.hi[i]) states[i] = RowState::AtHi;
             else states[i] = RowState::Free;
         }
+    }
+
+    /// The polish of pivot_loop.h at a converged x: the classification tolerance lets a tight
+    /// row keep a multiplier of the wrong sign up to tol * scale; those wrong beyond the
+    /// factor's accuracy go into ws_.inf for release (true), at most `rounds` times per run, on
+    /// the unshifted problem and where settings.polish asks for it.
+    /// The method goes on from there with q still falling, so its next answer is no worse.
+    bool polish(const std::vector<RowState>& states, const std::vector<double>& x, int& rounds) {
+        if (rounds == 0 || !settings_.polish || lcp_.shift != 0) return false;
+        classify_iterate(lcp_, ws_.it, states, x, accuracy_limit(settings_.tolerance, n_), ws_.inf);
+        if (ws_.inf.count() == 0) return false;
+        --rounds;
+        return true;
+    }
+
+    /// A pinned row (lo = hi) reported at the bound its multiplier supports, as the pivoting
+    /// loop reports it (w >= 0: at lo).
+    LoopOutcome converged(std::vector<RowState>& states) const {
+        for (int i = 0; i < n_; ++i)
+            if (lcp_.is_pinned(i)) states[i] = ws_.it.w[i] >= 0 ? RowState::AtLo : RowState::AtHi;
+        return LoopOutcome::Converged;
     }
 
     /// Frees every tight row whose multiplier has the wrong sign (ws_.inf at a face's minimizer),

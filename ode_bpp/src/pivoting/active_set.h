@@ -64,8 +64,11 @@ extern template class KeptBuffers<ActiveSetBuffers>;  // instantiated where Acti
 
 /// Runs the active-set method on (A + lcp.shift I, b, lo, hi) (fixed bounds only) from x (n
 /// entries, projected onto the bounds here; the rows at a bound after that start tight) for at
-/// most settings.max_pivots steps, to settings.tolerance (classify_row.h). Converged: states
-/// and x solve it. MaxIterations or Breakdown (a row dependent on the free set to machine
+/// most settings.max_pivots steps, to settings.tolerance (classify_row.h) on w = (A + shift I)x - b
+/// itself. Converged: states and x solve it, polished as the pivoting loop polishes its answers
+/// (PivotSettings::polish: at most tuning::kPolishRounds releases of the tight rows wrong beyond
+/// the factor's accuracy, on the unshifted problem), pinned rows at the bound their multiplier
+/// supports. MaxIterations or Breakdown (a row dependent on the free set to machine
 /// precision): states and x as they came in. Each step counts in counters.pivots, murty_pivots
 /// (a single pivot) and update_steps. factor: the free set's factor (its state on return
 /// unspecified).

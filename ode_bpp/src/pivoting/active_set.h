@@ -32,8 +32,8 @@
 // minimizer, bends once, or moves at least one row into T: at most n + 2 steps. There are
 // finitely many faces. Rows that may not be tight (BoxedLcp::always_free, infinite bounds) never
 // join T; pinned rows (lo = hi) never leave it.
-// Each step costs one solve with the dense factor and one row update per row that changes set,
-// O(|F|²) each (free_rows_factor.h), like one of ODE's Dantzig pivots; it starts from a given iterate
+// Each step costs one solve with the free set's factor and one row update per row that changes
+// set, at most O(|F|²) each (free_rows_factor.h), like one of ODE's Dantzig pivots; it starts from a given iterate
 // projected onto the bounds, so a good start (the pivoting loop's least infeasible iterate)
 // leaves only the rows whose state is wrong there.
 //

@@ -29,12 +29,13 @@ namespace {
 const char* const kOverBudget[] = {"bin-frozen-over-budget-93.mlcp", "bin-frozen-over-budget-114.mlcp",
                                    "forwarder-frozen-over-budget-226.mlcp", "bin-frozen-over-budget-250.mlcp"};
 
-Result solve_captured(const std::string& name, bool active_set) {
+Result solve_captured(const std::string& name, bool active_set, int rescue_after = Tuning{}.rescue_after) {
     const ReadResult read = read_mlcp((io_test::data_dir() / "captured" / name).string());
     EXPECT_TRUE(read.ok) << read.error;
     Options o;  // Bpp, Frozen friction, a budget of 100
     o.dantzig_fallback = false;
     o.tuning.active_set = active_set;
+    o.tuning.rescue_after = rescue_after;
     std::vector<double> x(static_cast<std::size_t>(read.file.n));
     return solve(read.file.view(), o, x.data());
 }
@@ -103,6 +104,35 @@ TEST(PivotingActiveSet, AgreesWithDantzigWhenItDoesMostOfTheWork) {
             }
         }
     EXPECT_GT(used, 0);  // the path under test was taken
+}
+
+// The captured tail islands: projecting the plain attempt's iterate onto the bounds pushes many
+// rows that belong free onto a bound; they leave T together (active_set.h), not one per step
+// (main before that took 41 and 36 active-set steps on these two).
+TEST(PivotingActiveSet, FreesTheRowsTheProjectionTightenedTogether) {
+    const struct {
+        const char* name;
+        int max_steps;
+    } islands[] = {{"forwarder-frozen-over-budget-226.mlcp", 20}, {"bin-frozen-over-budget-93.mlcp", 24}};
+    for (const auto& island : islands) {
+        const Result r = solve_captured(island.name, true);
+        EXPECT_EQ(r.status, Status::Converged) << island.name << ": " << r.message;
+        EXPECT_GT(r.pivoting.murty_pivots, 0) << island.name;
+        EXPECT_LE(r.pivoting.murty_pivots, island.max_steps) << island.name;
+    }
+}
+
+// The active set classifies its answer on w = Ax - b and polishes it itself: no plain step
+// re-solves it. With one plain step per fixed-bound solve, Frozen friction's two solves (the
+// frictionless one, then the frozen one) take two plain steps in all, the active set the rest.
+TEST(PivotingActiveSet, ItsAnswerIsNotSolvedAgainByAPlainStep) {
+    for (const char* name : kOverBudget) {
+        const Result r = solve_captured(name, true, 1);
+        ASSERT_EQ(r.status, Status::Converged) << name << ": " << r.message;
+        EXPECT_GT(r.pivoting.update_steps, 0) << name;
+        EXPECT_EQ(r.pivoting.downdate_steps + r.pivoting.refactor_steps, 2) << name;
+        EXPECT_LE(r.residuals.scaled_fixed_bound, certification_level(Options{}.tolerance)) << name;
+    }
 }
 
 namespace direct {

@@ -131,9 +131,10 @@ struct Tuning {
     /// with the rest of the budget; if that gives up, the plain attempt resumes. 0: no rescue.
     int rescue_after = 8;
     /// Where that plain attempt does not converge, an active-set method on the box QP from its
-    /// least infeasible iterate: it terminates finitely, each step adding or removing one row of
-    /// a factor of A_FF kept on its envelope (pivoting/active_set.h), before the regularization
-    /// continuation. Islands of any size. Needs rescue_after > 0.
+    /// least infeasible iterate: it terminates finitely, the rows with wrong-sign multipliers
+    /// leaving the tight set together and a ratio test keeping x within its bounds, each row
+    /// added to or removed from a factor of A_FF kept on its envelope (pivoting/active_set.h),
+    /// before the regularization continuation. Islands of any size. Needs rescue_after > 0.
     bool active_set = true;
     /// Consistent friction: most outer bound updates, damped (new = (1-d)*old + d*target).
     int max_friction_rounds = 100;

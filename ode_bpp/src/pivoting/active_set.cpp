@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "pivoting/classify_row.h"
@@ -19,6 +20,8 @@ struct ActiveSetBuffers {
     Iterate it;
     Infeasibility inf;
     std::vector<std::pair<int, RowState>> reached;  ///< free rows a step took onto a bound
+    std::vector<std::pair<int, RowState>> released;  ///< tight rows the latest release freed
+    std::vector<double> direction, curvature;       ///< d and (A + shift I) d of a bent step
 };
 template class KeptBuffers<ActiveSetBuffers>;
 
@@ -39,6 +42,7 @@ public:
         project(states, x);
         if (!factor_.reset(lcp_, states, x)) return give_up(states, x, LoopOutcome::Breakdown);
         bool fresh = true;  // the factor has not been updated since it was built
+        int polish_rounds = tuning::kPolishRounds;
         for (int step = 0; step < settings_.max_pivots; ++step) {
             ++counters_.pivots;
             ++counters_.murty_pivots;
@@ -47,7 +51,13 @@ public:
                 counters_.tight_per_step.push_back(n_ - static_cast<int>(factor_.members().size()));
             ws_.target = x;
             factor_.solve(ws_.target);
-            const double alpha = step_length(x);
+            const bool bent = ws_.released.size() > 1 && bent_step(states, x);
+            ws_.released.clear();
+            if (bent) {  // x moved along a descent direction short of the face's minimizer
+                fresh = false;
+                continue;
+            }
+            const double alpha = step_length(x, 1);
             if (alpha < 1) {
                 move(alpha, states, x);
                 fresh = false;
@@ -64,10 +74,8 @@ public:
             x.swap(ws_.target);
             tighten_rows_on_bounds(states, x);
             classify_iterate(lcp_, ws_.it, states, x, settings_.tolerance, ws_.inf);
-            if (ws_.inf.count() == 0) return LoopOutcome::Converged;
-            const int row = ws_.inf.rows[most_violated(ws_.inf)];  // a tight row: free rows are feasible
-            if (!factor_.add(row)) return give_up(states, x, LoopOutcome::Breakdown);
-            states[row] = RowState::Free;
+            if (ws_.inf.count() == 0 && !polish(states, x, polish_rounds)) return converged(states);
+            if (!release(states)) return give_up(states, x, LoopOutcome::Breakdown);
             fresh = false;
         }
         return give_up(states, x, LoopOutcome::MaxIterations);
@@ -87,9 +95,106 @@ private:
         }
     }
 
-    /// The ratio test: the largest alpha <= 1 with x + alpha (x* - x) within the bounds.
-    double step_length(const std::vector<double>& x) const {
-        double alpha = 1;
+    /// The polish of pivot_loop.h at a converged x: the classification tolerance lets a tight
+    /// row keep a multiplier of the wrong sign up to tol * scale; those wrong beyond the
+    /// factor's accuracy go into ws_.inf for release (true), at most `rounds` times per run, on
+    /// the unshifted problem and where settings.polish asks for it.
+    /// The method goes on from there with q still falling, so its next answer is no worse.
+    bool polish(const std::vector<RowState>& states, const std::vector<double>& x, int& rounds) {
+        if (rounds == 0 || !settings_.polish || lcp_.shift != 0) return false;
+        classify_iterate(lcp_, ws_.it, states, x, accuracy_limit(settings_.tolerance, n_), ws_.inf);
+        if (ws_.inf.count() == 0) return false;
+        --rounds;
+        return true;
+    }
+
+    /// A pinned row (lo = hi) reported at the bound its multiplier supports, as the pivoting
+    /// loop reports it (w >= 0: at lo).
+    LoopOutcome converged(std::vector<RowState>& states) const {
+        for (int i = 0; i < n_; ++i)
+            if (lcp_.is_pinned(i)) states[i] = ws_.it.w[i] >= 0 ? RowState::AtLo : RowState::AtHi;
+        return LoopOutcome::Converged;
+    }
+
+    /// Frees every tight row whose multiplier has the wrong sign (ws_.inf at a face's minimizer),
+    /// the most violated first, so that it is ws_.released[0]; a row that would break the factor
+    /// down stays tight. False when the most violated one does (nothing freed then).
+    bool release(std::vector<RowState>& states) {
+        ws_.released.clear();
+        const int first = most_violated(ws_.inf);
+        for (int k = -1; k < ws_.inf.count(); ++k) {
+            if (k == first) continue;
+            const int i = ws_.inf.rows[k < 0 ? first : k];  // a tight row: free rows are feasible
+            if (!factor_.add(i)) {
+                if (k < 0) return false;
+                continue;
+            }
+            ws_.released.emplace_back(i, states[i]);
+            states[i] = RowState::Free;
+        }
+        return true;
+    }
+
+    /// The first step after a release of several rows (active_set.h). If x* moves every released
+    /// row strictly inwards: false, the face step as usual. Otherwise the bent step along d
+    /// (true); or, should d be no descent direction through rounding, only the most violated row
+    /// stays released and x* is solved again for the face step (false).
+    bool bent_step(std::vector<RowState>& states, std::vector<double>& x) {
+        if (!direction_without_outward_releases(x)) return false;
+        const auto [slope, curvature] = along_direction();
+        if (!(slope < 0) || !(curvature > 0)) {
+            for (std::size_t k = 1; k < ws_.released.size(); ++k) retighten(ws_.released[k], states, x);
+            ws_.target = x;
+            factor_.solve(ws_.target);
+            return false;
+        }
+        for (const auto& released : ws_.released)
+            if (ws_.direction[released.first] == 0) retighten(released, states, x);
+        for (int i : factor_.members()) ws_.target[i] = x[i] + ws_.direction[i];
+        const double minimum = -slope / curvature;
+        const double blocked = step_length(x, std::numeric_limits<double>::infinity());
+        if (minimum < blocked) {
+            for (int i : factor_.members()) x[i] += minimum * ws_.direction[i];
+        } else {
+            move(blocked, states, x);
+        }
+        return true;
+    }
+
+    /// d = x* - x on F, 0 on the released rows that x* does not move strictly inwards; true if
+    /// there are any.
+    bool direction_without_outward_releases(const std::vector<double>& x) {
+        ws_.direction.assign(static_cast<std::size_t>(n_), 0.0);
+        for (int i : factor_.members()) ws_.direction[i] = ws_.target[i] - x[i];
+        bool outward = false;
+        for (const auto& [row, was] : ws_.released) {
+            const double p = ws_.direction[row];
+            if (was == RowState::AtLo ? p > 0 : p < 0) continue;
+            ws_.direction[row] = 0;
+            outward = true;
+        }
+        return outward;
+    }
+
+    /// g'd and d'(A + shift I)d for q(x + t d) = q(x) + t g'd + t²/2 d'(A + shift I)d, g = w at x.
+    std::pair<double, double> along_direction() {
+        double slope = 0;
+        for (int i : factor_.members()) slope += ws_.it.w[i] * ws_.direction[i];
+        lcp_.A->multiply(ws_.direction, lcp_.shift, ws_.curvature);
+        double curvature = 0;
+        for (int i : factor_.members()) curvature += ws_.direction[i] * ws_.curvature[i];
+        return {slope, curvature};
+    }
+
+    /// A released row back to T at the bound it left.
+    void retighten(const std::pair<int, RowState>& released, std::vector<RowState>& states, const std::vector<double>& x) {
+        states[released.first] = released.second;
+        factor_.remove(released.first, x[released.first]);
+    }
+
+    /// The ratio test: the largest alpha <= cap with x + alpha (x* - x) within the bounds.
+    double step_length(const std::vector<double>& x, double cap) const {
+        double alpha = cap;
         for (int i : factor_.members()) {
             const double p = ws_.target[i] - x[i];
             if (p < 0 && ws_.target[i] < lcp_.lo[i]) alpha = std::min(alpha, (lcp_.lo[i] - x[i]) / p);

@@ -10,19 +10,30 @@
 // feasible, the tight rows T at their bounds and every free row strictly inside its bounds:
 //  - x* = the minimizer of q over the face {x_T fixed}: Eq. 6 with the free set's factor;
 //  - if x* is within the bounds, x = x*; if every tight row's multiplier has the right sign
-//    (Eq. 4, classify_row.h) x solves the problem, otherwise the row of the largest wrong-sign
-//    multiplier leaves T (one row appended to the factor);
+//    (Eq. 4, classify_row.h) x solves the problem, otherwise every tight row with a wrong-sign
+//    multiplier leaves T (appended to the factor), the most violated first;
 //  - otherwise the ratio test: x moves along x* - x until the first free row reaches a bound,
 //    and that row joins T (one row removed from the factor).
-// Why it terminates: q is convex along the segment towards x*, the face's minimizer, so it never
-// rises. After a row leaves T with a wrong-sign multiplier, the face's new minimizer moves it
-// strictly inwards (ibid., Thm. 16.5), and every other free row is strictly inside its bounds,
-// so the next step is not zero and q falls strictly: the face minimizers where rows leave T have
-// strictly falling q, hence no face (T with its bounds) repeats, and between two of them at most
-// n rows join T. There are finitely many faces. Rows that may not be tight (BoxedLcp::always_free,
-// infinite bounds) never join T; pinned rows (lo = hi) never leave it.
-// Each step costs one solve with the dense factor and one row update, O(|F|²)
-// (free_rows_factor.h), like one of ODE's Dantzig pivots; it starts from a given iterate
+// The first step after several rows left T may bend: the released rows that the new x* does not
+// move strictly inwards rejoin T, and x moves along d = x* - x on the rest of F (d_i = 0 on the
+// re-tightened rows) to the exact minimum of q along d (one product with A), or to the first
+// bound on the way. d is a descent direction: x* minimizes q on the larger face, so g'(x* - x) < 0
+// at x (not that face's minimizer), and each dropped term g_i d_i is > 0 (g_i = w_i has the wrong
+// sign, d_i points outwards), so g'd < 0 too. (Should rounding make g'd >= 0, only the most
+// violated row stays released, as in the single-row method.) On the captured tail islands this
+// frees the rows that projecting the start pushed onto a bound in a few steps instead of one
+// each (docs/tuning.md).
+// Why it terminates: q is convex along each segment and the step stops at or before the minimum
+// along it, so q never rises. After a release, the next step falls strictly: the face step moves
+// every released row strictly inwards (else it bends) and every other free row is strictly inside,
+// so it is not zero (ibid., Thm. 16.5 for one row), and the bent step is a descent step of
+// positive length. So the face minimizers where rows leave T have strictly falling q, hence no
+// face (T with its bounds) repeats there, and between two of them each step reaches the face's
+// minimizer, bends once, or moves at least one row into T: at most n + 2 steps. There are
+// finitely many faces. Rows that may not be tight (BoxedLcp::always_free, infinite bounds) never
+// join T; pinned rows (lo = hi) never leave it.
+// Each step costs one solve with the free set's factor and one row update per row that changes
+// set, at most O(|F|²) each (free_rows_factor.h), like one of ODE's Dantzig pivots; it starts from a given iterate
 // projected onto the bounds, so a good start (the pivoting loop's least infeasible iterate)
 // leaves only the rows whose state is wrong there.
 //
@@ -53,8 +64,11 @@ extern template class KeptBuffers<ActiveSetBuffers>;  // instantiated where Acti
 
 /// Runs the active-set method on (A + lcp.shift I, b, lo, hi) (fixed bounds only) from x (n
 /// entries, projected onto the bounds here; the rows at a bound after that start tight) for at
-/// most settings.max_pivots steps, to settings.tolerance (classify_row.h). Converged: states
-/// and x solve it. MaxIterations or Breakdown (a row dependent on the free set to machine
+/// most settings.max_pivots steps, to settings.tolerance (classify_row.h) on w = (A + shift I)x - b
+/// itself. Converged: states and x solve it, polished as the pivoting loop polishes its answers
+/// (PivotSettings::polish: at most tuning::kPolishRounds releases of the tight rows wrong beyond
+/// the factor's accuracy, on the unshifted problem), pinned rows at the bound their multiplier
+/// supports. MaxIterations or Breakdown (a row dependent on the free set to machine
 /// precision): states and x as they came in. Each step counts in counters.pivots, murty_pivots
 /// (a single pivot) and update_steps. factor: the free set's factor (its state on return
 /// unspecified).

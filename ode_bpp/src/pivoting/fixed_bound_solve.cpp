@@ -51,19 +51,17 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
     return pivot_fixed_bounds(lcp_, solver_, settings(left()), states, x, counters_, buffers_.loop);
 }
 
-/// The active-set method from x, the plain loop's least infeasible iterate (active_set.h),
-/// then the plain loop from its answer, which certifies it with the factor strategy's own solve
-/// and polishes it (usually one step). Converged, MaxIterations or Breakdown; states and x as
-/// they came in unless Converged. The dense factor is given back after each run (page_array.h):
-/// faulting its pages in again costs less than keeping them resident between rare large runs.
+/// The active-set method from x, the plain loop's least infeasible iterate (active_set.h), which
+/// classifies its answer on w = (A + shift I)x - b itself and polishes it as the plain loop would.
+/// Converged, MaxIterations or Breakdown; states and x as they came in unless Converged. The dense
+/// factor is given back after each run (page_array.h): faulting its pages in again costs less
+/// than keeping them resident between rare large runs.
 LoopOutcome FixedBoundSolver::by_active_set(std::vector<RowState>& states, std::vector<double>& x) {
     const int max_steps = tuning::kActiveSetStepsPerRow * lcp_.n() + tuning::kActiveSetStepsExtra;
     const LoopOutcome outcome = active_set(lcp_, settings(max_steps), states, x, counters_, buffers_.active_set,
                                            buffers_.free_rows);
     buffers_.free_rows.release();
-    if (outcome != LoopOutcome::Converged) return outcome;
-    return pivot_fixed_bounds(lcp_, solver_, settings(std::max(1, options_.tuning.rescue_after)), states, x, counters_,
-                              buffers_.loop);
+    return outcome;
 }
 
 /// The rescue continuation (regularization.h): stages on A + delta I, the first from the warm

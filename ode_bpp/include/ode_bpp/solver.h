@@ -231,8 +231,9 @@ struct PivotStats {
     int murty_pivots = 0;        ///< of which single pivots (Murty's, and the active set's steps)
     int downdate_steps = 0;      ///< steps whose L_FF came from copying L and deleting rows
     int refactor_steps = 0;      ///< steps whose L_FF came from a (partial) refactorization
-    /// steps whose L_FF came from the active set's incremental factor (one row added or removed;
-    /// Tuning::active_set); pivots = downdate_steps + refactor_steps + update_steps
+    /// steps whose L_FF came from the active set's incremental factor (rows added or removed one
+    /// at a time, one or more per step; Tuning::active_set); pivots = downdate_steps +
+    /// refactor_steps + update_steps
     int update_steps = 0;
     int accuracy_refactors = 0;  ///< deleted factors rejected by the free-residual check and refactored
     int rescues = 0;             ///< fixed-bound solves the rescue continuation finished (Tuning::rescue_after)

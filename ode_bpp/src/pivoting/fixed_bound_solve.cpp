@@ -53,8 +53,8 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
 
 /// The active-set method from x, the plain loop's least infeasible iterate (active_set.h), which
 /// classifies its answer on w = (A + shift I)x - b itself and polishes it as the plain loop would.
-/// Converged, MaxIterations or Breakdown; states and x as they came in unless Converged. The dense
-/// factor is given back after each run (page_array.h): faulting its pages in again costs less
+/// Converged, MaxIterations or Breakdown; states and x as they came in unless Converged. The
+/// factor's storage is given back after each run (page_array.h): faulting its pages in again costs less
 /// than keeping them resident between rare large runs.
 LoopOutcome FixedBoundSolver::by_active_set(std::vector<RowState>& states, std::vector<double>& x) {
     const int max_steps = tuning::kActiveSetStepsPerRow * lcp_.n() + tuning::kActiveSetStepsExtra;

@@ -1,7 +1,7 @@
 // One fixed-bound solve of a BPP method: the boxed LCP with its bounds as they stand (paper
 // Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
 // decides: the plain attempt from the warm start; where that does not converge within
-// Tuning::rescue_after steps, the active-set method on an incremental dense factor
+// Tuning::rescue_after steps, the active-set method on an incremental factor kept on its envelope
 // (active_set.h, which terminates finitely), then the rescue continuation, then the plain loop
 // again where the rescue gives up; and all of it again one rung up the breakdown ladder after a
 // Cholesky breakdown.
@@ -33,7 +33,7 @@ enum class FixedOutcome {
 /// capacity outlives one solve.
 struct FixedBoundBuffers {
     LoopWorkspace loop;
-    FreeRowsFactor free_rows;  ///< the active set's dense factor
+    FreeRowsFactor free_rows;  ///< the active set's factor (on the envelope, free_rows_factor.h)
     ActiveSetWorkspace active_set;
 };
 

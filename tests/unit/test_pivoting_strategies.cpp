@@ -149,6 +149,35 @@ TEST_P(PivotingStrategy, SingularMatrixBreaksDown) {
     EXPECT_NE(solver->solve_free(one_out, x, true), FactorOutcome::Breakdown);
 }
 
+// Bpp's lazily factored L0 (skyline_solver.cpp) after a breakdown in column 1 of duplicated rows:
+// the columns before the failure stay usable, and every later step that needs the failing column
+// breaks down again instead of refactoring columns that now hold factor values, not A's.
+TEST(PivotingStrategyBpp, LazyL0StaysBrokenFromItsFailingColumnOn) {
+    // duplicated_rows scaled by 4: refactoring column 0 from its own factor values then gives
+    // other values (at a diagonal of 1 it would give the same)
+    auto owned = problems::duplicated_rows();
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) owned.a(i, j) *= 4;
+    const linalg::SymmetricRows A(owned.view(), {});
+    StrategyBuffers buffers;
+    auto solver = make_free_solver(Method::Bpp, A, buffers);
+    ASSERT_TRUE(solver->prepare(0));
+    const std::vector<char> none(3, 0), second_out = {0, 1, 0};
+    std::vector<double> x = {1, 1, 1};
+    EXPECT_EQ(solver->solve_free(none, x, false), FactorOutcome::Breakdown);
+    x = {1, 1, 1};
+    EXPECT_EQ(solver->solve_free(none, x, false), FactorOutcome::Breakdown);
+    // rows {0, 2}: a refactoring from column 1 needs only L0's column 0
+    const Eigen::Matrix3d M = dense(A);
+    x = {1, 0, 0.3};
+    ASSERT_EQ(solver->solve_free(second_out, x, true), FactorOutcome::Refactored);
+    const Eigen::Vector2d expected =
+        (Eigen::Matrix2d() << M(0, 0), M(0, 2), M(2, 0), M(2, 2)).finished().llt().solve(Eigen::Vector2d(1, 0.3));
+    EXPECT_NEAR(x[0], expected[0], 1e-12);
+    EXPECT_EQ(x[1], 0.0);
+    EXPECT_NEAR(x[2], expected[1], 1e-12);
+}
+
 INSTANTIATE_TEST_SUITE_P(AllStrategies, PivotingStrategy, ::testing::ValuesIn(kBppMethods),
                          [](const auto& info) {
                              std::string s = to_string(info.param);

@@ -83,6 +83,7 @@ public:
         load_matrix(shift);
         s_.L0 = s_.A_env;
         l0_columns_ = 0;
+        l0_broken_ = false;
         if (variant_ != SkylineVariant::CostModel && !factor_l0_through(s_.shape.n)) return false;
         // L is not copied from L0 here (l_unset_): the first step that needs L restores all of
         // it, and a step with no tight row, which solves with L0 itself, copies nothing
@@ -120,6 +121,7 @@ public:
 
     /// Table 4: L0 with every tight row deleted against a fresh factor of A_FF.
     double factor_error(const std::vector<char>& tight) const override {
+        if (l0_broken_) return std::numeric_limits<double>::quiet_NaN();
         SkylineMatrix deleted = s_.L0;
         if (linalg::skyline_cholesky(deleted, l0_columns_, {}) >= 0) return std::numeric_limits<double>::quiet_NaN();
         std::vector<double> work;
@@ -209,11 +211,15 @@ private:
 
     /// L0's columns < k1 factored (skyline_cholesky's partial form: the same values as one whole
     /// factorization). False when one of them breaks down: Ap + shift I is not numerically SPD.
+    /// The columns before the failing one stay usable; from it on L0 holds partly factored
+    /// values, so every later call that needs it fails too, without factoring them again.
     bool factor_l0_through(int k1) {
         if (k1 <= l0_columns_) return true;
-        if (linalg::skyline_cholesky(s_.L0, l0_columns_, k1, {}) >= 0) return false;
-        l0_columns_ = k1;
-        return true;
+        if (l0_broken_) return false;
+        const int failed = linalg::skyline_cholesky(s_.L0, l0_columns_, k1, {});
+        l0_broken_ = failed >= 0;
+        l0_columns_ = l0_broken_ ? failed : k1;
+        return !l0_broken_;
     }
 
     FactorOutcome breakdown() {
@@ -242,6 +248,7 @@ private:
     SkylineStorage& s_;
     int dirty_from_ = 0;
     int l0_columns_ = 0;    ///< L0's columns factored so far (prepare: none; factor_l0_through)
+    bool l0_broken_ = false;  ///< L0's column l0_columns_ broke down (factor_l0_through)
     bool l_unset_ = false;  ///< L holds no values since prepare (copy_from)
     const SkylineMatrix* last_factor_ = nullptr;  ///< L_FF of the latest successful solve_free
 };

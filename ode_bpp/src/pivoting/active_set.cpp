@@ -109,10 +109,9 @@ private:
     }
 
     /// A pinned row (lo = hi) reported at the bound its multiplier supports, as the pivoting
-    /// loop reports it (w >= 0: at lo).
+    /// loop reports it (iterate.h).
     LoopOutcome converged(std::vector<RowState>& states) const {
-        for (int i = 0; i < n_; ++i)
-            if (lcp_.is_pinned(i)) states[i] = ws_.it.w[i] >= 0 ? RowState::AtLo : RowState::AtHi;
+        orient_pinned_rows(ws_.it, states);
         return LoopOutcome::Converged;
     }
 

@@ -45,6 +45,11 @@ void classify_iterate(const BoxedLcp& lcp, const Iterate& it, const std::vector<
     classify_rows(lcp.n(), states, x, it.w, it.lo, it.hi, diag, it.scale, tolerance, inf);
 }
 
+void orient_pinned_rows(const Iterate& it, std::vector<RowState>& states) {
+    for (std::size_t i = 0; i < states.size(); ++i)
+        if (it.lo[i] == it.hi[i]) states[i] = it.w[i] >= 0 ? RowState::AtLo : RowState::AtHi;
+}
+
 double accuracy_limit(double tolerance, int n) {
     return std::max(0.1 * tolerance, 100.0 * n * std::numeric_limits<double>::epsilon());
 }

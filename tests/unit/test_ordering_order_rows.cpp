@@ -106,6 +106,24 @@ TEST(OrderingOrderRows, ReverseKindReversesTheGraphOrder) {
     EXPECT_EQ(island.order(OrderingKind::Identity, true), identity(island.n()));
 }
 
+TEST(OrderingOrderRows, PairIsBothKindsFromOneNumbering) {
+    std::mt19937 rng(76);
+    const Island island = winch(15, rng);
+    const BlockStructure& b = island.blocks;
+    const auto row_graph = [&island] { return ordering::graph_from_lower(island.rows.data(), island.n(), island.n()); };
+    const ordering::OrderPair blocks =
+        ordering::cuthill_mckee_pair(island.n(), row_graph, b.num_blocks(), b.block_row.data(), b.block_body.data());
+    EXPECT_EQ(blocks.forward, island.order(OrderingKind::CuthillMcKee, true));
+    EXPECT_EQ(blocks.reverse, island.order(OrderingKind::ReverseCuthillMcKee, true));
+    EXPECT_NE(blocks.forward, blocks.reverse);
+    const ordering::OrderPair rows = ordering::cuthill_mckee_pair(island.n(), row_graph, 0, nullptr, nullptr);
+    EXPECT_EQ(rows.forward, island.order(OrderingKind::CuthillMcKee, false));
+    EXPECT_EQ(rows.reverse, island.order(OrderingKind::ReverseCuthillMcKee, false));
+    const ordering::OrderPair none = ordering::cuthill_mckee_pair(island.n(), nullptr, 0, nullptr, nullptr);
+    EXPECT_EQ(none.forward, identity(island.n()));
+    EXPECT_EQ(none.reverse, identity(island.n()));
+}
+
 TEST(OrderingOrderRows, LikelyTightRowsGoLastInTheirOrder) {
     std::mt19937 rng(74);
     const Island island = winch(25, rng);

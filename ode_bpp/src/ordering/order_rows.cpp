@@ -68,6 +68,22 @@ std::vector<int> expand_blocks(const std::vector<int>& block_perm, const int* bl
     return perm;
 }
 
+OrderPair cuthill_mckee_pair(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,
+                             const int* block_body) {
+    OrderPair pair;
+    if (blocks_consistent(n, num_blocks, block_row, block_body)) {
+        std::vector<int> blocks = cuthill_mckee(block_graph(num_blocks, block_row, block_body), false);
+        pair.forward = expand_blocks(blocks, block_row, num_blocks);
+        std::reverse(blocks.begin(), blocks.end());
+        pair.reverse = expand_blocks(blocks, block_row, num_blocks);
+        return pair;
+    }
+    pair.forward = row_graph ? cuthill_mckee(row_graph(), false) : identity_order(n);
+    pair.reverse = pair.forward;
+    if (row_graph) std::reverse(pair.reverse.begin(), pair.reverse.end());
+    return pair;
+}
+
 std::vector<int> order_rows(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,
                             const int* block_body, OrderingKind kind, const std::vector<char>* likely_tight) {
     std::vector<int> perm = kind == OrderingKind::Identity

@@ -36,6 +36,16 @@ void move_flagged_last(std::vector<int>& perm, const std::vector<char>& flagged)
 std::vector<int> order_rows(int n, const double* A, int lda, int num_blocks, const int* block_row,
                             const int* block_body, OrderingKind kind, const std::vector<char>* likely_tight);
 
+/// Cuthill-McKee and reverse Cuthill-McKee (perm[new] = old each) from one numbering of the
+/// graph: the reverse numbering is the forward one read backwards (cuthill_mckee.h), so the
+/// pair costs one ordering. Graph and fallbacks as order_rows below; no rows moved.
+struct OrderPair {
+    std::vector<int> forward;
+    std::vector<int> reverse;
+};
+OrderPair cuthill_mckee_pair(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,
+                             const int* block_body);
+
 /// The same with the row graph of A from a callable, called only when the blocks are not usable
 /// (e.g. graph_from_rows of a sparse A); null: the identity then.
 std::vector<int> order_rows(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,

@@ -30,6 +30,16 @@ std::vector<int> order(const Problem& p, const linalg::SymmetricRows& A, orderin
     return ordering::is_permutation(perm, p.n) ? perm : identity(p.n);
 }
 
+/// Both Cuthill-McKee numberings from one ordering of the graph; the identity for both where a
+/// numbering is not a permutation (as order() above).
+ordering::OrderPair order_pair(const Problem& p, const linalg::SymmetricRows& A) {
+    const auto row_graph = [&A] { return ordering::graph_from_rows(A); };
+    ordering::OrderPair pair = ordering::cuthill_mckee_pair(p.n, row_graph, p.num_blocks, p.block_row, p.block_body);
+    if (!ordering::is_permutation(pair.forward, p.n)) pair.forward = identity(p.n);
+    if (!ordering::is_permutation(pair.reverse, p.n)) pair.reverse = identity(p.n);
+    return pair;
+}
+
 /// Rows tight in the warm start (original space), or empty when none is.
 std::vector<char> warm_tight(const std::vector<RowState>& warm_start) {
     std::vector<char> tight(warm_start.size(), 0);
@@ -109,8 +119,9 @@ std::vector<int> choose_ordering(Method method, const Problem& problem, const li
     if (method == Method::BppSky) return order(problem, A, OrderingKind::CuthillMcKee);
     if (method != Method::Bpp) return identity(problem.n);
     if (ordering_cannot_pay(A)) return identity(problem.n);
-    const std::vector<int> cm = order(problem, A, OrderingKind::CuthillMcKee);
-    const std::vector<int> rcm = order(problem, A, OrderingKind::ReverseCuthillMcKee);
+    const ordering::OrderPair pair = order_pair(problem, A);
+    const std::vector<int>& cm = pair.forward;
+    const std::vector<int>& rcm = pair.reverse;
     std::vector<int> best = smaller_envelope(A, cm, rcm);
     const std::vector<char> tight = warm_tight(warm_start);
     const std::vector<char> first_tight = first_solve_tight(problem, tight, first);

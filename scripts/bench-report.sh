@@ -178,7 +178,7 @@ elif [[ -s $OUT_DIR/bench.csv ]]; then
     echo "method,files,solves,instructions" > "$OUT_DIR/callgrind.csv"
     for method in bpp dantzig bpp-chol; do
       if valgrind --tool=callgrind --callgrind-out-file="$OUT_DIR/callgrind/$method.out" \
-        '--toggle-collect=ode_bpp::solve(ode_bpp::Problem const&, ode_bpp::Options const&, ode_bpp::Strided)' \
+        '--toggle-collect=ode_bpp::solve(ode_bpp::Problem const&, ode_bpp::Options const&, ode_bpp::Strided, ode_bpp::Start const&, ode_bpp::Workspace&)' \
         "$HARNESS" --methods "$method" --repeat 1 --warmup 1 --csv /dev/null "${CG_FILES[@]}" \
         > "$OUT_DIR/callgrind/$method.log" 2>&1; then
         # every file is solved twice (untimed + 1 repetition), the first once more as warm-up

@@ -251,6 +251,9 @@ def callgrind(lines, out_dir):
     dz = num(rows.get("dantzig", {}).get("instructions"))
     for method, r in rows.items():
         total, solves = num(r["instructions"]), num(r["solves"])
+        if not total or not solves:  # nothing collected: the toggle missed ode_bpp::solve
+            lines.append(f"| {method} | {r['files']} | {r['solves']} | not collected | – | – |")
+            continue
         lines.append(f"| {method} | {r['files']} | {r['solves']} | {total:.4g} | {total / solves:.4g} | {fmt_x(dz / total)} |")
     lines.append("")
 

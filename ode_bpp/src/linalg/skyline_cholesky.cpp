@@ -12,7 +12,6 @@ namespace ode_bpp::linalg {
 namespace {
 
 using Segment = Eigen::Map<Eigen::VectorXd>;
-using ConstSegment = Eigen::Map<const Eigen::VectorXd>;
 
 bool is_removed(const std::vector<char>& removed, int k) { return !removed.empty() && removed[k] != 0; }
 
@@ -53,18 +52,15 @@ void embed_removed(SkylineMatrix& L, int k0, int k1, const std::vector<char>& re
     }
 }
 
-/// Below this many entries a column update is a plain loop: Eigen's vectorized form costs more
-/// to set up than the arithmetic (callgrind, a 34-row buggy island's L0: the factorization was a
-/// fifth of the whole world step). Both round each entry alike: target - (l * source).
+/// Source columns shorter than this reach column k one at a time, in a plain loop: collecting
+/// them into groups costs more than it saves (forwarder: 11 % more instructions), as did Eigen's
+/// vectorized form, whose set-up outweighed the arithmetic (callgrind, a 34-row buggy island's
+/// L0: the factorization was a fifth of the whole world step).
 constexpr int kShortColumn = 8;
 
 /// target[0 .. length) -= l * source[0 .. length).
 void subtract_scaled(double* target, const double* source, double l, int length) {
-    if (length < kShortColumn) {
-        for (int r = 0; r < length; ++r) target[r] -= l * source[r];
-        return;
-    }
-    Segment(target, length).noalias() -= l * ConstSegment(source, length);
+    for (int r = 0; r < length; ++r) target[r] -= l * source[r];
 }
 
 /// Up to kGroup earlier columns updating column k at once: column k's entries are loaded and
@@ -107,12 +103,13 @@ void subtract_members(double* target, const SourceGroup& g, int first, int from,
 }
 
 /// Column k -= the group's columns: rows below the shortest member take the members that
-/// still reach them.
+/// still reach them (the lengths are non-decreasing).
 void subtract_group(double* target, SourceGroup& g) {
     int from = 0;
     for (int first = 0; first < g.size; ++first) {
+        assert(from <= g.length[first]);
         subtract_members(target, g, first, from, g.length[first]);
-        from = std::max(from, g.length[first]);
+        from = g.length[first];
     }
     g.size = 0;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <numeric>
+#include <utility>
 
 #include "ordering/cuthill_mckee.h"
 #include "ordering/graph.h"
@@ -23,16 +24,6 @@ std::vector<int> identity_order(int n) {
     std::vector<int> perm(static_cast<std::size_t>(n));
     std::iota(perm.begin(), perm.end(), 0);
     return perm;
-}
-
-std::vector<int> graph_order(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,
-                             const int* block_body, bool reverse) {
-    if (blocks_consistent(n, num_blocks, block_row, block_body)) {
-        const Graph blocks = block_graph(num_blocks, block_row, block_body);
-        return expand_blocks(cuthill_mckee(blocks, reverse), block_row, num_blocks);
-    }
-    if (!row_graph) return identity_order(n);
-    return cuthill_mckee(row_graph(), reverse);
 }
 
 }  // namespace
@@ -86,9 +77,13 @@ OrderPair cuthill_mckee_pair(int n, const std::function<Graph()>& row_graph, int
 
 std::vector<int> order_rows(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,
                             const int* block_body, OrderingKind kind, const std::vector<char>* likely_tight) {
-    std::vector<int> perm = kind == OrderingKind::Identity
-        ? identity_order(n)
-        : graph_order(n, row_graph, num_blocks, block_row, block_body, kind == OrderingKind::ReverseCuthillMcKee);
+    std::vector<int> perm;
+    if (kind == OrderingKind::Identity) {
+        perm = identity_order(n);
+    } else {
+        OrderPair pair = cuthill_mckee_pair(n, row_graph, num_blocks, block_row, block_body);
+        perm = std::move(kind == OrderingKind::ReverseCuthillMcKee ? pair.reverse : pair.forward);
+    }
     if (likely_tight != nullptr) move_flagged_last(perm, *likely_tight);
     return perm;
 }

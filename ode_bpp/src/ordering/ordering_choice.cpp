@@ -24,14 +24,8 @@ std::vector<int> identity(int n) {
     return perm;
 }
 
-std::vector<int> order(const Problem& p, const linalg::SymmetricRows& A, ordering::OrderingKind kind) {
-    const auto row_graph = [&A] { return ordering::graph_from_rows(A); };
-    std::vector<int> perm = ordering::order_rows(p.n, row_graph, p.num_blocks, p.block_row, p.block_body, kind, nullptr);
-    return ordering::is_permutation(perm, p.n) ? perm : identity(p.n);
-}
-
-/// Both Cuthill-McKee numberings from one ordering of the graph; the identity for both where a
-/// numbering is not a permutation (as order() above).
+/// Both Cuthill-McKee numberings from one ordering of the graph; the identity for either that is
+/// not a permutation.
 ordering::OrderPair order_pair(const Problem& p, const linalg::SymmetricRows& A) {
     const auto row_graph = [&A] { return ordering::graph_from_rows(A); };
     ordering::OrderPair pair = ordering::cuthill_mckee_pair(p.n, row_graph, p.num_blocks, p.block_row, p.block_body);
@@ -51,11 +45,6 @@ std::vector<char> warm_tight(const std::vector<RowState>& warm_start) {
     return any ? tight : std::vector<char>{};
 }
 
-/// The smaller envelope of Cuthill-McKee and its reverse (Sec. 3.4).
-const std::vector<int>& smaller_envelope(const linalg::SymmetricRows& A, const std::vector<int>& cm, const std::vector<int>& rcm) {
-    return linalg::envelope_size(A.row_profile_under(rcm)) <= linalg::envelope_size(A.row_profile_under(cm)) ? rcm : cm;
-}
-
 /// Instructions that numbering the graph costs per vertex and per edge: the two Cuthill-McKee
 /// numberings and their envelope comparison (callgrind, ODE's 6-row demo_motors island: ~6k
 /// instructions for 6 vertices and 15 edges), in units comparable to CostModel's multiply-adds.
@@ -69,10 +58,6 @@ bool ordering_cannot_pay(const linalg::SymmetricRows& A) {
     const double nnz = A.n() > 0 ? A.row_end(A.n() - 1) : 0;
     return kStepsPerWarmSolve * identity.refactor_cost(0) <= kOrderingCostPerEntry * (A.n() + nnz);
 }
-
-}  // namespace
-
-namespace {
 
 /// The cheaper of deleting the rows flagged in `tight` (original space) from L0 and refactoring
 /// from the first of them, in the shape of perm; 0 when none is flagged.
@@ -101,11 +86,10 @@ std::vector<char> first_solve_tight(const Problem& p, const std::vector<char>& w
     return any ? tight : std::vector<char>{};
 }
 
-}  // namespace
-
-double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight,
-                        const std::vector<char>& first_tight) {
-    const linalg::SkylineShape shape = linalg::SkylineShape::from_row_profile(A.row_profile_under(perm));
+/// warm_solve_price with the row profile of A under perm given (A.row_profile_under(perm)).
+double price_with_profile(const std::vector<int>& profile, const std::vector<int>& perm, const std::vector<char>& tight,
+                          const std::vector<char>& first_tight) {
+    const linalg::SkylineShape shape = linalg::SkylineShape::from_row_profile(profile);
     const linalg::CostModel cost(shape);
     const double factor = kRefactorUnit * cost.refactor_cost(0);
     const double step = step_price(cost, shape, perm, tight);
@@ -113,22 +97,31 @@ double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& 
     return factor + first + (kStepsPerWarmSolve - 1) * step;
 }
 
+}  // namespace
+
+double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight,
+                        const std::vector<char>& first_tight) {
+    return price_with_profile(A.row_profile_under(perm), perm, tight, first_tight);
+}
+
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
                                  const std::vector<RowState>& warm_start, FirstSolve first) {
-    using ordering::OrderingKind;
-    if (method == Method::BppSky) return order(problem, A, OrderingKind::CuthillMcKee);
+    if (method == Method::BppSky) return order_pair(problem, A).forward;
     if (method != Method::Bpp) return identity(problem.n);
     if (ordering_cannot_pay(A)) return identity(problem.n);
     const ordering::OrderPair pair = order_pair(problem, A);
     const std::vector<int>& cm = pair.forward;
     const std::vector<int>& rcm = pair.reverse;
-    std::vector<int> best = smaller_envelope(A, cm, rcm);
+    // the smaller envelope of Cuthill-McKee and its reverse (Sec. 3.4)
+    const std::vector<int> cm_profile = A.row_profile_under(cm), rcm_profile = A.row_profile_under(rcm);
+    const bool reverse = linalg::envelope_size(rcm_profile) <= linalg::envelope_size(cm_profile);
+    std::vector<int> best = reverse ? rcm : cm;
     const std::vector<char> tight = warm_tight(warm_start);
     const std::vector<char> first_tight = first_solve_tight(problem, tight, first);
     if (tight.empty() && first_tight.empty()) return best;
     // Moving likely-tight rows last makes deleting them cheap but can widen the envelope a lot
     // (contact rows couple bodies spread along the order): keep whichever prices lower.
-    double best_price = warm_solve_price(A, best, tight, first_tight);
+    double best_price = price_with_profile(reverse ? rcm_profile : cm_profile, best, tight, first_tight);
     for (const std::vector<char>* moved : {&tight, &first_tight}) {
         if (moved->empty()) continue;
         for (const std::vector<int>* base : {&cm, &rcm}) {

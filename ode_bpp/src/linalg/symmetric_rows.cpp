@@ -14,6 +14,36 @@ std::vector<int> inverse_permutation(const std::vector<int>& perm) {
 
 SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) { assign(p, perm); }
 
+namespace {
+
+/// block_of[i]: the block of row i, when p's blocks tile its rows (Problem::block_row); false,
+/// block_of untouched, when p has no blocks or they do not tile.
+bool mark_block_rows(const Problem& p, std::vector<int>& block_of) {
+    if (p.num_blocks <= 0 || p.block_row == nullptr || p.block_body == nullptr || p.block_row[0] != 0 ||
+        p.block_row[p.num_blocks] != p.n)
+        return false;
+    for (int k = 0; k < p.num_blocks; ++k)
+        if (p.block_row[k + 1] <= p.block_row[k]) return false;
+    block_of.resize(static_cast<std::size_t>(p.n));
+    for (int k = 0; k < p.num_blocks; ++k) std::fill(block_of.begin() + p.block_row[k], block_of.begin() + p.block_row[k + 1], k);
+    return true;
+}
+
+/// coupled[q] = 1 for the blocks q <= k whose entries against block k are A's structure: k itself,
+/// and the blocks that share a body (not the environment, -1) with it.
+void mark_coupled_blocks(const Problem& p, int k, std::vector<char>& coupled) {
+    coupled.assign(static_cast<std::size_t>(p.num_blocks), 0);
+    const int* bodies = p.block_body + 2 * k;
+    for (int q = 0; q < k; ++q) {
+        const int* other = p.block_body + 2 * q;
+        for (int side = 0; side < 2; ++side)
+            if (bodies[side] >= 0 && (other[0] == bodies[side] || other[1] == bodies[side])) coupled[q] = 1;
+    }
+    coupled[k] = 1;
+}
+
+}  // namespace
+
 void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
     if (p.sparse != nullptr) {
         const std::vector<int>& stored = p.sparse->order();
@@ -39,11 +69,15 @@ void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
     std::vector<double>& diagonal = build_.diagonal;
     diagonal.assign(static_cast<std::size_t>(p.n), 0.0);
     lower.clear();
+    const bool structural = mark_block_rows(p, build_.block_of);
+    std::vector<char>& coupled = build_.coupled;  // coupled[q]: block q couples with row i's block
     for (int i = 0; i < p.n; ++i) {
         const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
         diagonal[to_new[i]] = row[i];
+        if (structural && (i == 0 || build_.block_of[i] != build_.block_of[i - 1]))
+            mark_coupled_blocks(p, build_.block_of[i], coupled);
         for (int j = 0; j < i; ++j)
-            if (row[j] != 0) {
+            if (row[j] != 0 || (structural && coupled[build_.block_of[j]])) {
                 const int a = to_new[i], b = to_new[j];
                 lower.push_back(a > b ? LowerEntry{a, b, row[j]} : LowerEntry{b, a, row[j]});
             }
@@ -105,10 +139,15 @@ void SymmetricRows::fill_rows(const std::vector<LowerEntry>& lower, ToNew to_new
     col_.resize(static_cast<std::size_t>(rowptr_[n_]));
     val_.resize(col_.size());
     next.assign(rowptr_.begin(), rowptr_.end() - 1);
+    std::vector<int>& positions = build_.positions;
+    positions.resize(2 * lower.size());
+    int* position = positions.data();
     for (const LowerEntry& e : lower) {
         const int r = to_new(e.row), c = to_new(e.col);
+        *position++ = next[r];
         col_[next[r]] = c;
         val_[next[r]++] = e.value;
+        *position++ = next[c];
         col_[next[c]] = r;
         val_[next[c]++] = e.value;
     }

@@ -25,7 +25,10 @@ public:
     SymmetricRows() = default;
     /// Ap(i,j) = A(perm[i], perm[j]) of the problem's matrix (original space: its dense lower
     /// triangle, or problem.sparse). perm: perm[new] = old, n entries, or empty for the identity.
-    /// Exact zeros of a dense A are not stored.
+    /// From a dense A the stored entries are the non-zeros and, when the problem has row blocks
+    /// that tile its rows (Problem::block_row), A's structural pattern: every entry of a block
+    /// against itself and against each earlier block that shares a body with it, exact zeros too
+    /// (the entries ode/assemble.h forms from J, so a dense and a sparse island store the same).
     SymmetricRows(const Problem& problem, const std::vector<int>& perm);
     /// The same as constructing from (problem, perm), reusing this object's storage.
     void assign(const Problem& problem, const std::vector<int>& perm);
@@ -38,6 +41,20 @@ public:
     /// the same order within each row, in one pass. O(n + entries).
     void assign_lower(const std::vector<double>& diagonal, const std::vector<LowerEntry>& lower,
                       const std::vector<int>& order);
+    /// Where the last assign_lower stored each entry of its `lower`: lower[e] went to positions
+    /// entry_positions()[2e] (in its row's stored row) and [2e+1] (in its column's) of col()/val().
+    /// Kept only until the next assignment of any kind.
+    const std::vector<int>& entry_positions() const { return build_.positions; }
+
+    /// Writable views of the stored values, for a caller that assigns a matrix of the same
+    /// pattern again (ode/assemble.h): diagonal[i] is A(i,i) and values[k] is val(k), in the
+    /// stored order. Writing them keeps the pattern, the order and the profile; the caller must
+    /// write every stored entry, both copies of an entry with the same value.
+    struct Values {
+        double* diagonal;
+        double* values;
+    };
+    Values values_in_place() { return {diag_.data(), val_.data()}; }
     /// The same matrix under a further permutation: result(i,j) = this(perm[i], perm[j]).
     SymmetricRows permuted(const std::vector<int>& perm) const;
     /// The same, written into out (its storage reused); out must not be *this. Each row keeps
@@ -74,7 +91,8 @@ public:
     /// y = (Ap + shift I) x and scale = |Ap + shift I| |x| in one pass over the entries (the
     /// pivoting loop's w and tolerance scale of Eq. 5), n entries each.
     void multiply_with_scale(const double* x, double shift, double* y, double* scale) const;
-    /// Row profile of the lower triangle, stored order: first[i] = min({i} U {j < i : Ap(i,j) != 0}).
+    /// Row profile of the lower triangle, stored order: first[i] = min({i} U {j < i : Ap(i,j)
+    /// stored}): the non-zeros and, with row blocks, A's structural pattern (see the constructor).
     std::vector<int> row_profile() const;
     /// The same into first (n entries, its storage reused). O(n) after the ordered assign_lower,
     /// which finds it while it counts; O(n + nnz) otherwise.
@@ -101,7 +119,8 @@ private:
         BuildBuffers& operator=(const BuildBuffers&) { return *this; }
         BuildBuffers(BuildBuffers&&) noexcept = default;
         BuildBuffers& operator=(BuildBuffers&&) noexcept = default;
-        std::vector<int> to_new, count, next;
+        std::vector<int> to_new, count, next, positions, block_of;
+        std::vector<char> coupled;
         std::vector<LowerEntry> lower;
         std::vector<double> diagonal;
     };

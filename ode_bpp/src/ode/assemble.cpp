@@ -1,6 +1,7 @@
 #include "ode/assemble.h"
 
 #include <algorithm>
+#include <cassert>
 #include <vector>
 
 #include "ode_bpp/ode.h"
@@ -140,6 +141,51 @@ void assemble_joints(const dMLCP& island, AssemblyBuffers& buffers, Keep keep) {
     }
 }
 
+void describe_structure(const dMLCP& island, std::vector<int>& structure) {
+    structure.clear();
+    structure.push_back(island.m);
+    structure.push_back(island.nb);
+    structure.push_back(island.nj);
+    for (int k = 0; k < island.nj; ++k) {
+        const dMLCPJoint& joint = island.joints[k];
+        structure.insert(structure.end(), {joint.row, joint.m, joint.body[0], joint.body[1]});
+    }
+}
+
+bool matches_pattern(const AssemblyPattern& pattern, const linalg::SymmetricRows& out,
+                     const std::vector<int>& structure, const std::vector<int>& order) {
+    return pattern.rows == &out && pattern.structure == structure && pattern.order == order;
+}
+
+/// The pattern of out as the full assembly just built it: where each formed entry is stored
+/// (linalg::SymmetricRows::entry_positions).
+void remember_pattern(const linalg::SymmetricRows& out, const std::vector<int>& order, AssemblyBuffers& buffers) {
+    AssemblyPattern& pattern = buffers.pattern;
+    pattern.rows = &out;
+    pattern.structure = buffers.structure;
+    pattern.order = order;
+    pattern.to_stored.resize(static_cast<std::size_t>(out.n()));
+    for (int i = 0; i < out.n(); ++i) pattern.to_stored[out.built_row(i)] = i;
+    pattern.slots = out.entry_positions();
+}
+
+/// A of an island with the remembered pattern's structure, written into out's stored values: the
+/// same entries are formed in the same order, so the k-th goes where the k-th went.
+void refill_values(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers) {
+    const linalg::SymmetricRows::Values values = out.values_in_place();
+    const int* to_stored = buffers.pattern.to_stored.data();
+    const int* slot = buffers.pattern.slots.data();
+    assemble_joints(island, buffers, [&](int i, int j, double a) {
+        if (j == i) {
+            values.diagonal[to_stored[i]] = a;
+            return;
+        }
+        values.values[slot[0]] = values.values[slot[1]] = a;
+        slot += 2;
+    });
+    assert(slot == buffers.pattern.slots.data() + buffers.pattern.slots.size());
+}
+
 }  // namespace
 
 bool has_sparse_form(const dMLCP& p) {
@@ -149,16 +195,22 @@ bool has_sparse_form(const dMLCP& p) {
 
 void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers,
                    const std::vector<int>& order) {
+    describe_structure(island, buffers.structure);
+    if (matches_pattern(buffers.pattern, out, buffers.structure, order)) {
+        refill_values(island, out, buffers);
+        return;
+    }
     std::vector<linalg::LowerEntry>& lower = buffers.lower;
     lower.clear();
     std::vector<double>& diagonal = buffers.diagonal;
     diagonal.resize(static_cast<std::size_t>(island.m));
     assemble_joints(island, buffers, [&lower, &diagonal](int i, int j, double a) {
         if (j == i) diagonal[i] = a;
-        else if (a != 0) lower.push_back({i, j, a});  // exact zeros are not stored, as from the dense A
+        else lower.push_back({i, j, a});  // an exact zero too: the pattern is the joints' (see assemble.h)
     });
     if (order.empty()) out.assign_lower(diagonal, lower);
     else out.assign_lower(diagonal, lower, order);
+    remember_pattern(out, order, buffers);
 }
 
 void assemble_dense_lower(const dMLCP& island, double* A, int lda, AssemblyBuffers& /*buffers: not needed*/) {

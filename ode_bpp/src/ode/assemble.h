@@ -24,14 +24,31 @@ struct SharedSides {
     int p_side[2] = {0, 0}, q_side[2] = {0, 0};
 };
 
+/// Where assemble_rows stored the entries of the island it assembled last, so that an island of
+/// the same structure (as a rule the same island one step later) writes its values straight into
+/// the stored rows, without listing its entries and building the rows again.
+struct AssemblyPattern {
+    const linalg::SymmetricRows* rows = nullptr;  ///< the matrix it describes; null: none
+    /// m, nb, nj, then each joint's row, m and two bodies: what fixes the entries formed
+    std::vector<int> structure;
+    std::vector<int> order;      ///< the order the rows were stored in (empty: the island's own)
+    std::vector<int> to_stored;  ///< m entries: the stored row of each island row
+    /// Two per lower entry formed, in the order they are formed: its positions in its row's and
+    /// its column's stored row (linalg::SymmetricRows::entry_positions)
+    std::vector<int> slots;
+};
+
 /// The buffers of an assembly, kept by the caller (ode/island_view.h) so that assembling the
-/// next island allocates nothing once they have grown. One assembly per buffers at a time.
+/// next island allocates nothing once they have grown. One assembly per buffers at a time, and
+/// one output matrix per buffers.
 struct AssemblyBuffers {
     Incidence incidence;
     std::vector<int> neighbours;
     std::vector<SharedSides> sides;
     std::vector<linalg::LowerEntry> lower;
     std::vector<double> diagonal;
+    std::vector<int> structure;
+    AssemblyPattern pattern;
 };
 
 /// True when the island comes in the sparse form (J, JinvM, cfm and the joints, A null).
@@ -43,11 +60,16 @@ bool has_sparse_form(const dMLCP& island);
 /// JinvM_{p,b} J_{q,b}^T; no other block is formed, so the cost is O(entries of A) (6 multiply-adds
 /// each) and the memory O(entries). Each entry is summed in the order ODE's Stage2b/2c use
 /// (lower entry (i,j), i > j: row i's JinvM against row j's J, body[0] of row i's joint first,
-/// the diagonal starting from cfm_i), so the rows equal those read from ODE's dense A bit for bit
-/// and both forms give one trajectory. Exact zeros are not stored, as from the dense A.
+/// the diagonal starting from cfm_i), so the values equal those read from ODE's dense A bit for
+/// bit. Every entry of these blocks is stored, an exact zero too: the pattern is the joints'
+/// (linalg::SymmetricRows's structural pattern, which a dense A with its blocks gets too), so it
+/// does not follow entries that ODE's sums give as 0 one step and 1e-30 the next.
 /// Island: has_sparse_form. order: empty, or a permutation of the island's rows (order[new] =
 /// old) to store A in (linalg::SymmetricRows::order), the one the solver will factor in, so that
 /// it need not permute A again (the same rows, entry for entry).
+/// When out was last assembled with these buffers from an island of the same structure and in the
+/// same order, the pattern is the same: the values are written in place (buffers.pattern),
+/// O(entries) with no listing, counting or sorting.
 void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers,
                    const std::vector<int>& order = {});
 

@@ -61,6 +61,16 @@ OwnedProblem opposed_friction_pair() {
     return p;
 }
 
+OwnedProblem heavy_internal_impulse() {
+    const double a = 1 - 1e-6;
+    OwnedProblem p = from_rows("heavy_internal_impulse", {{1, -a, 1}, {-a, 1, -1}, {1, -1, 2}});
+    p.nub = 2;
+    p.b = {1e-3, 1e-3, 1e-7};
+    p.lo = {-kInf, -kInf, 0};
+    p.hi = {kInf, kInf, kInf};
+    return p;
+}
+
 }  // namespace ode_bpp::problems
 
 namespace ode_bpp::problems {

@@ -26,6 +26,14 @@ OwnedProblem duplicated_rows();
 /// Rows: 0 normal, 1 its friction, 2 normal, 3 its friction.
 OwnedProblem opposed_friction_pair();
 
+/// Two unbounded rows held by nearly opposite impulses of about 1e3 (A's leading block
+/// [[1, -a], [-a, 1]], a = 1 - 1e-6, b = 1e-3 each) and a unilateral row 2 (lo = 0) that sees
+/// their difference: A(2, .) = (1, -1, 2), b_2 = 1e-7. The exact answer has row 2 free at about
+/// 1e-7. Started with row 2 at its bound, w_2 = -1e-7 is within the 1e-9 tolerance of the row's
+/// scale (|A||x| ~ 2e3): an answer certified by its scaled residual (5e-11) but not relative to
+/// |b| (1e-7), as heavy contacts on a pile give (docs/benchmarks.md, the pyramid's step 60).
+OwnedProblem heavy_internal_impulse();
+
 /// mu = +inf, ODE's "never slips" (legal input, dContact::surface.mu = dInfinity): chain_mlcp(6, 4,
 /// 100, 1e-10) (27 rows: 5 ball joints and 4 ground contacts) with every friction coefficient
 /// infinite. Such friction rows are unbounded (docs/modelling.md). Before they were, Consistent

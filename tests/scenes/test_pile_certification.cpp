@@ -110,17 +110,16 @@ const PileScene kScenes[] = {
 /// pivots). (A 69-row rock pile island at step 45 was listed while the outer friction rounds' answer
 /// stood uncertified: a friction impulse above mu times its normal by 5.2e-7, relative residual
 /// 2.4e-8; a linked solve from that answer now certifies it at 7.8e-15, friction_policy.cpp.)
-/// The pyramid's trajectory follows bpp's rounding too: since A keeps its structural zeros
-/// (ode/assemble.h) it reaches a 930-row island at step 60 that converges with friction rows at
-/// their bounds whose w has the wrong sign by 1-5e-7 against impulses of 14-70: within the
-/// row-scaled tolerance (scaled residual 6.7e-10 < 1e-9) but 4.7e-8 relative to |b|. Dantzig
-/// leaves 7.4e-8; bpp at tolerance 1e-11 certifies it at 2e-14.
+/// (The pyramid's 930-row island at step 60, reached since A keeps its structural zeros
+/// (ode/assemble.h), converged with friction rows at their bounds whose w had the wrong sign by
+/// 1-5e-7 against impulses of 14-70: within the row-scaled tolerance, 4.7e-8 relative to |b|; a
+/// second solve at a hundredth of the tolerance now certifies it at 4.4e-10, solver.cpp's polish.)
 struct OpenIsland {
     std::string scene;
     long step;
     int rows;
 };
-const OpenIsland kOpen[] = {{"bin", 150, 0}, {"bin", 270, 0}, {"pyramid", 60, 930}};
+const OpenIsland kOpen[] = {{"bin", 150, 0}, {"bin", 270, 0}};
 
 bool is_open(const std::string& scene, long step, int rows, int min_rows) {
     for (const OpenIsland& o : kOpen)

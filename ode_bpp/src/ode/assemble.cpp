@@ -75,29 +75,27 @@ SharedSides shared_sides(const dMLCPJoint& p, const dMLCPJoint& q) {
 }
 
 /// Row i of joint p against the rows j of joint q (q == p or earlier) before j_end: the entries
-/// start + sum over the shared bodies of (row i of J M^-1) . (row j of J), in ODE's order; the
-/// pointers to q's rows advance row by row. Calls emit(j, value) for each j.
+/// sum over the shared bodies of (row i of J M^-1) . (row j of J), from 0, in ODE's order (body[0]
+/// of p first), with row i's entries held in registers; 0 where they share no body. Calls
+/// emit(j, value) for each j in turn.
 template <typename Emit>
 void row_against_joint(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j_end,
-                       const SharedSides& shared, double start, Emit emit) {
-    if (shared.count == 1) {  // most pairs share one body: row i's entries held in registers
-        const JinvMEntries m = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[0], i));
-        const dReal* jq = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[0], q.row);
-        for (int j = q.row; j < j_end; ++j, jq += dMLCP_J_ROW) emit(j, start + body_term(m, jq));
+                       const SharedSides& shared, Emit&& emit) {
+    if (shared.count == 0) {
+        for (int j = q.row; j < j_end; ++j) emit(j, 0.0);
         return;
     }
-    const dReal* jinvm[2] = {nullptr, nullptr};
-    const dReal* jq[2] = {nullptr, nullptr};
-    for (int k = 0; k < shared.count; ++k) {
-        jinvm[k] = side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[k], i);
-        jq[k] = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[k], q.row);
+    const JinvMEntries m0 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[0], i));
+    const dReal* j0 = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[0], q.row);
+    if (shared.count == 1) {  // most pairs share one body
+        for (int j = q.row; j < j_end; ++j, j0 += dMLCP_J_ROW) emit(j, 0.0 + body_term(m0, j0));
+        return;
     }
-    for (int j = q.row; j < j_end; ++j) {
-        double a = start;
-        for (int k = 0; k < shared.count; ++k) {
-            a += body_term(jinvm[k], jq[k]);
-            jq[k] += dMLCP_J_ROW;
-        }
+    const JinvMEntries m1 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[1], i));
+    const dReal* j1 = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[1], q.row);
+    for (int j = q.row; j < j_end; ++j, j0 += dMLCP_J_ROW, j1 += dMLCP_J_ROW) {
+        double a = 0.0 + body_term(m0, j0);
+        a += body_term(m1, j1);
         emit(j, a);
     }
 }
@@ -111,33 +109,40 @@ double diagonal_entry(const dMLCP& island, const dMLCPJoint& p, int i, const Sha
     return a;
 }
 
-/// The lower entries and the diagonal of joint p's rows, row by row with increasing columns:
-/// keep(i, j, a) for each lower entry (j < i), keep(i, i, a) for each diagonal entry.
-template <typename Keep>
-void assemble_joint(const dMLCP& island, int pj, const std::vector<int>& neighbours, std::vector<SharedSides>& sides,
-                    Keep& keep) {
-    const dMLCPJoint& p = island.joints[pj];
-    sides.clear();
-    for (int qj : neighbours) sides.push_back(shared_sides(p, island.joints[qj]));
-    const SharedSides own = shared_sides(p, p);
-    for (int i = p.row; i < p.row + p.m; ++i) {
-        const auto keep_row_i = [&keep, i](int j, double a) { keep(i, j, a); };
-        for (std::size_t k = 0; k < neighbours.size(); ++k) {
-            const dMLCPJoint& q = island.joints[neighbours[k]];
-            row_against_joint(island, p, i, q, q.row + q.m, sides[k], 0.0, keep_row_i);
+/// Each joint's couplings: the earlier joints it shares a body with, increasing, and the sides
+/// they share (shared_sides). O(joints + incidences).
+void find_couplings(const dMLCP& island, AssemblyBuffers& buffers, Couplings& out) {
+    build_incidence(island, buffers.incidence);
+    out.first.assign(1, 0);
+    out.joint.clear();
+    out.sides.clear();
+    for (int pj = 0; pj < island.nj; ++pj) {
+        earlier_neighbours(island, buffers.incidence, pj, buffers.neighbours);
+        for (int qj : buffers.neighbours) {
+            out.joint.push_back(qj);
+            out.sides.push_back(shared_sides(island.joints[pj], island.joints[qj]));
         }
-        row_against_joint(island, p, i, p, i, own, 0.0, keep_row_i);
-        keep(i, i, diagonal_entry(island, p, i, own));
+        out.first.push_back(static_cast<int>(out.joint.size()));
     }
 }
 
-/// Every joint's rows in turn (assemble_joint), against the earlier joints it shares a body with.
+/// Every joint's rows in turn, row by row with increasing columns: keep(i, j, a) for each lower
+/// entry (j < i: the coupled joints' rows, then the joint's own earlier rows), keep(i, i, a) for
+/// each diagonal entry.
 template <typename Keep>
-void assemble_joints(const dMLCP& island, AssemblyBuffers& buffers, Keep keep) {
-    build_incidence(island, buffers.incidence);
+void assemble_joints(const dMLCP& island, const Couplings& couplings, Keep keep) {
     for (int pj = 0; pj < island.nj; ++pj) {
-        earlier_neighbours(island, buffers.incidence, pj, buffers.neighbours);
-        assemble_joint(island, pj, buffers.neighbours, buffers.sides, keep);
+        const dMLCPJoint& p = island.joints[pj];
+        const SharedSides own = shared_sides(p, p);
+        for (int i = p.row; i < p.row + p.m; ++i) {
+            const auto keep_row_i = [&keep, i](int j, double a) { keep(i, j, a); };
+            for (int k = couplings.first[pj]; k < couplings.first[pj + 1]; ++k) {
+                const dMLCPJoint& q = island.joints[couplings.joint[k]];
+                row_against_joint(island, p, i, q, q.row + q.m, couplings.sides[k], keep_row_i);
+            }
+            row_against_joint(island, p, i, p, i, own, keep_row_i);
+            keep(i, i, diagonal_entry(island, p, i, own));
+        }
     }
 }
 
@@ -167,23 +172,34 @@ void remember_pattern(const linalg::SymmetricRows& out, const std::vector<int>& 
     pattern.to_stored.resize(static_cast<std::size_t>(out.n()));
     for (int i = 0; i < out.n(); ++i) pattern.to_stored[out.built_row(i)] = i;
     pattern.slots = out.entry_positions();
+    pattern.couplings.first.swap(buffers.couplings.first);
+    pattern.couplings.joint.swap(buffers.couplings.joint);
+    pattern.couplings.sides.swap(buffers.couplings.sides);
 }
 
 /// A of an island with the remembered pattern's structure, written into out's stored values: the
-/// same entries are formed in the same order, so the k-th goes where the k-th went.
-void refill_values(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuffers& buffers) {
+/// entries are formed in assemble_joints' order, so the k-th goes where the k-th went.
+void refill_values(const dMLCP& island, linalg::SymmetricRows& out, const AssemblyPattern& pattern) {
     const linalg::SymmetricRows::Values values = out.values_in_place();
-    const int* to_stored = buffers.pattern.to_stored.data();
-    const int* slot = buffers.pattern.slots.data();
-    assemble_joints(island, buffers, [&](int i, int j, double a) {
-        if (j == i) {
-            values.diagonal[to_stored[i]] = a;
-            return;
-        }
-        values.values[slot[0]] = values.values[slot[1]] = a;
+    const Couplings& couplings = pattern.couplings;
+    const int* slot = pattern.slots.data();
+    const auto write = [v = values.values, &slot](int /*j*/, double a) {
+        v[slot[0]] = v[slot[1]] = a;
         slot += 2;
-    });
-    assert(slot == buffers.pattern.slots.data() + buffers.pattern.slots.size());
+    };
+    for (int pj = 0; pj < island.nj; ++pj) {
+        const dMLCPJoint& p = island.joints[pj];
+        const SharedSides own = shared_sides(p, p);
+        for (int i = p.row; i < p.row + p.m; ++i) {
+            for (int k = couplings.first[pj]; k < couplings.first[pj + 1]; ++k) {
+                const dMLCPJoint& q = island.joints[couplings.joint[k]];
+                row_against_joint(island, p, i, q, q.row + q.m, couplings.sides[k], write);
+            }
+            row_against_joint(island, p, i, p, i, own, write);
+            values.diagonal[pattern.to_stored[i]] = diagonal_entry(island, p, i, own);
+        }
+    }
+    assert(slot == pattern.slots.data() + pattern.slots.size());
 }
 
 }  // namespace
@@ -197,14 +213,15 @@ void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuff
                    const std::vector<int>& order) {
     describe_structure(island, buffers.structure);
     if (matches_pattern(buffers.pattern, out, buffers.structure, order)) {
-        refill_values(island, out, buffers);
+        refill_values(island, out, buffers.pattern);
         return;
     }
+    find_couplings(island, buffers, buffers.couplings);
     std::vector<linalg::LowerEntry>& lower = buffers.lower;
     lower.clear();
     std::vector<double>& diagonal = buffers.diagonal;
     diagonal.resize(static_cast<std::size_t>(island.m));
-    assemble_joints(island, buffers, [&lower, &diagonal](int i, int j, double a) {
+    assemble_joints(island, buffers.couplings, [&lower, &diagonal](int i, int j, double a) {
         if (j == i) diagonal[i] = a;
         else lower.push_back({i, j, a});  // an exact zero too: the pattern is the joints' (see assemble.h)
     });

@@ -24,6 +24,13 @@ struct SharedSides {
     int p_side[2] = {0, 0}, q_side[2] = {0, 0};
 };
 
+/// For each joint p, the earlier joints it shares a body with (increasing) and the sides they
+/// share: joint[k] and sides[k] for k in first[p] .. first[p+1]-1. Block (p, joint[k]) of A.
+struct Couplings {
+    std::vector<int> first, joint;
+    std::vector<SharedSides> sides;
+};
+
 /// Where assemble_rows stored the entries of the island it assembled last, so that an island of
 /// the same structure (as a rule the same island one step later) writes its values straight into
 /// the stored rows, without listing its entries and building the rows again.
@@ -36,6 +43,7 @@ struct AssemblyPattern {
     /// Two per lower entry formed, in the order they are formed: its positions in its row's and
     /// its column's stored row (linalg::SymmetricRows::entry_positions)
     std::vector<int> slots;
+    Couplings couplings;  ///< the island's couplings, which the structure fixes
 };
 
 /// The buffers of an assembly, kept by the caller (ode/island_view.h) so that assembling the
@@ -44,7 +52,7 @@ struct AssemblyPattern {
 struct AssemblyBuffers {
     Incidence incidence;
     std::vector<int> neighbours;
-    std::vector<SharedSides> sides;
+    Couplings couplings;
     std::vector<linalg::LowerEntry> lower;
     std::vector<double> diagonal;
     std::vector<int> structure;

@@ -178,27 +178,19 @@ void remember_pattern(const linalg::SymmetricRows& out, const std::vector<int>& 
 }
 
 /// A of an island with the remembered pattern's structure, written into out's stored values: the
-/// entries are formed in assemble_joints' order, so the k-th goes where the k-th went.
+/// same assemble_joints forms the same entries in the same order, so the k-th goes where the k-th
+/// went.
 void refill_values(const dMLCP& island, linalg::SymmetricRows& out, const AssemblyPattern& pattern) {
     const linalg::SymmetricRows::Values values = out.values_in_place();
-    const Couplings& couplings = pattern.couplings;
     const int* slot = pattern.slots.data();
-    const auto write = [v = values.values, &slot](int /*j*/, double a) {
-        v[slot[0]] = v[slot[1]] = a;
-        slot += 2;
-    };
-    for (int pj = 0; pj < island.nj; ++pj) {
-        const dMLCPJoint& p = island.joints[pj];
-        const SharedSides own = shared_sides(p, p);
-        for (int i = p.row; i < p.row + p.m; ++i) {
-            for (int k = couplings.first[pj]; k < couplings.first[pj + 1]; ++k) {
-                const dMLCPJoint& q = island.joints[couplings.joint[k]];
-                row_against_joint(island, p, i, q, q.row + q.m, couplings.sides[k], write);
-            }
-            row_against_joint(island, p, i, p, i, own, write);
-            values.diagonal[pattern.to_stored[i]] = diagonal_entry(island, p, i, own);
+    assemble_joints(island, pattern.couplings, [&values, &pattern, &slot](int i, int j, double a) {
+        if (j == i) {
+            values.diagonal[pattern.to_stored[i]] = a;
+            return;
         }
-    }
+        values.values[slot[0]] = values.values[slot[1]] = a;
+        slot += 2;
+    });
     assert(slot == pattern.slots.data() + pattern.slots.size());
 }
 

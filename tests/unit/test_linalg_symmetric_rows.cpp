@@ -65,6 +65,26 @@ TEST(SymmetricRows, OrderedAssemblyIsThePermutedMatrixEntryForEntry) {
     }
 }
 
+/// first[i] = min({i} U {stored j < i}), read off the rows.
+std::vector<int> profile_read_off(const SymmetricRows& A) {
+    std::vector<int> first(static_cast<std::size_t>(A.n()));
+    for (int i = 0; i < A.n(); ++i) {
+        first[i] = i;
+        for (int k = A.row_begin(i); k < A.row_end(i); ++k) first[i] = std::min(first[i], A.col(k));
+    }
+    return first;
+}
+
+TEST(SymmetricRows, ProfileFoundWhileCountingIsTheOneReadOffTheRows) {
+    const auto owned = problems::chain_mlcp(30, 20);
+    const SymmetricRows A(owned.view(), {});  // the unordered assign_lower
+    EXPECT_EQ(A.row_profile(), profile_read_off(A));
+    const SymmetricRows reordered(owned.view(), shuffled(A.n(), 7));
+    EXPECT_EQ(reordered.row_profile(), profile_read_off(reordered));
+    const SymmetricRows permuted = A.permuted(shuffled(A.n(), 8));  // permute_into: read off
+    EXPECT_EQ(permuted.row_profile(), profile_read_off(permuted));
+}
+
 TEST(SymmetricRows, PermutingCarriesTheOrderAndUndoingItGivesTheIdentity) {
     const auto owned = problems::chain_mlcp(10, 6);
     const SymmetricRows A(owned.view(), {});

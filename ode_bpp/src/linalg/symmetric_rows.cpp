@@ -92,14 +92,17 @@ void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
 void SymmetricRows::assign_lower(std::vector<double>& diagonal, const std::vector<LowerEntry>& lower) {
     n_ = static_cast<int>(diagonal.size());
     order_.clear();
-    profile_known_ = false;
     diag_.swap(diagonal);
     std::vector<int>& count = build_.count;
     count.assign(static_cast<std::size_t>(n_), 0);
+    profile_.resize(static_cast<std::size_t>(n_));
+    std::iota(profile_.begin(), profile_.end(), 0);
     for (const LowerEntry& e : lower) {
         ++count[e.row];
         ++count[e.col];
+        profile_[e.row] = std::min(profile_[e.row], e.col);
     }
+    profile_known_ = true;
     // row-major order of `lower` fills each row with increasing columns: A(r, j < r) while the
     // sweep is at row r, then A(i > r, r) as it passes the later rows i
     fill_rows(lower, [](int i) { return i; });

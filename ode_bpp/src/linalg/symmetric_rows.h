@@ -94,8 +94,9 @@ public:
     /// Row profile of the lower triangle, stored order: first[i] = min({i} U {j < i : Ap(i,j)
     /// stored}): the non-zeros and, with row blocks, A's structural pattern (see the constructor).
     std::vector<int> row_profile() const;
-    /// The same into first (n entries, its storage reused). O(n) after the ordered assign_lower,
-    /// which finds it while it counts; O(n + nnz) otherwise.
+    /// The same into first (n entries, its storage reused). O(n) after assign_lower, which finds
+    /// it while it counts (and after values_in_place, which keeps the pattern); O(n + nnz) after
+    /// permute_into.
     void row_profile(std::vector<int>& first) const;
     /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.
     std::vector<int> row_profile_under(const std::vector<int>& perm) const;
@@ -127,7 +128,7 @@ private:
 
     int n_ = 0;
     std::vector<int> order_;
-    std::vector<int> profile_;    ///< row_profile(), when profile_known_ (the ordered assign_lower finds it)
+    std::vector<int> profile_;    ///< row_profile(), when profile_known_ (assign_lower finds it)
     bool profile_known_ = false;
     std::vector<double> diag_;
     std::vector<int> rowptr_, col_;

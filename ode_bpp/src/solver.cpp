@@ -174,9 +174,13 @@ double natural_certificate(const Result& r) { return certified_by(r.residuals.sc
 /// The residual that can refute a Converged answer: friction bounds from the answer's own normals
 /// where the method keeps friction consistent (PGS projects onto them at every sweep), the
 /// fixed-bound residuals where it freezes them (ODE's Dantzig; BPP's Frozen mode).
+bool keeps_friction_consistent(const Options& o) {
+    return o.method == Method::Pgs || (is_bpp(o.method) && o.friction == FrictionMode::Consistent);
+}
+
 double refuting_residual(const Options& o, const Result& r) {
-    const bool consistent = o.method == Method::Pgs || (is_bpp(o.method) && o.friction == FrictionMode::Consistent);
-    return consistent ? natural_certificate(r) : certified_by(r.residuals.scaled_fixed_bound, r.residuals.fixed_bound);
+    return keeps_friction_consistent(o) ? natural_certificate(r)
+                                        : certified_by(r.residuals.scaled_fixed_bound, r.residuals.fixed_bound);
 }
 
 std::string residual_text(double residual, double level) {
@@ -216,8 +220,7 @@ constexpr double kPolishFactor = 100;
 /// The residual relative to max(1, ||b||) of the kind that refutes a Converged answer
 /// (refuting_residual).
 double relative_refuting_residual(const Options& o, const Result& r) {
-    const bool consistent = is_bpp(o.method) && o.friction == FrictionMode::Consistent;
-    return consistent ? r.residuals.relative_natural : r.residuals.fixed_bound;
+    return keeps_friction_consistent(o) ? r.residuals.relative_natural : r.residuals.fixed_bound;
 }
 
 bool wants_polish(const Options& o, const Result& r) {

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <numeric>
 
+#include "ordering/graph.h"
+#include "structure_rules.h"
+
 namespace ode_bpp::linalg {
 
 std::vector<int> inverse_permutation(const std::vector<int>& perm) {
@@ -16,29 +19,22 @@ SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) { a
 
 namespace {
 
-/// block_of[i]: the block of row i, when p's blocks tile its rows (Problem::block_row); false,
-/// block_of untouched, when p has no blocks or they do not tile.
+/// block_of[i]: the block of row i, when p's blocks tile its rows (Problem::block_row, the rule
+/// check_block_row states); false, block_of untouched, when p has no blocks or they do not tile.
 bool mark_block_rows(const Problem& p, std::vector<int>& block_of) {
-    if (p.num_blocks <= 0 || p.block_row == nullptr || p.block_body == nullptr || p.block_row[0] != 0 ||
-        p.block_row[p.num_blocks] != p.n)
+    if (p.num_blocks <= 0 || p.block_row == nullptr || p.block_body == nullptr ||
+        check_block_row(p.block_row, p.num_blocks, p.n))
         return false;
-    for (int k = 0; k < p.num_blocks; ++k)
-        if (p.block_row[k + 1] <= p.block_row[k]) return false;
     block_of.resize(static_cast<std::size_t>(p.n));
     for (int k = 0; k < p.num_blocks; ++k) std::fill(block_of.begin() + p.block_row[k], block_of.begin() + p.block_row[k + 1], k);
     return true;
 }
 
 /// coupled[q] = 1 for the blocks q <= k whose entries against block k are A's structure: k itself,
-/// and the blocks that share a body (not the environment, -1) with it.
-void mark_coupled_blocks(const Problem& p, int k, std::vector<char>& coupled) {
-    coupled.assign(static_cast<std::size_t>(p.num_blocks), 0);
-    const int* bodies = p.block_body + 2 * k;
-    for (int q = 0; q < k; ++q) {
-        const int* other = p.block_body + 2 * q;
-        for (int side = 0; side < 2; ++side)
-            if (bodies[side] >= 0 && (other[0] == bodies[side] || other[1] == bodies[side])) coupled[q] = 1;
-    }
+/// and its neighbours in the constraint graph (blocks that share a body with it).
+void mark_coupled_blocks(const ordering::Graph& blocks, int k, std::vector<char>& coupled) {
+    coupled.assign(static_cast<std::size_t>(blocks.n()), 0);
+    for (int e = blocks.xadj[k]; e < blocks.xadj[k + 1] && blocks.adj[e] < k; ++e) coupled[blocks.adj[e]] = 1;
     coupled[k] = 1;
 }
 
@@ -70,12 +66,14 @@ void SymmetricRows::assign(const Problem& p, const std::vector<int>& perm) {
     diagonal.assign(static_cast<std::size_t>(p.n), 0.0);
     lower.clear();
     const bool structural = mark_block_rows(p, build_.block_of);
+    const ordering::Graph blocks = structural ? ordering::block_graph(p.num_blocks, p.block_row, p.block_body)
+                                              : ordering::Graph{};
     std::vector<char>& coupled = build_.coupled;  // coupled[q]: block q couples with row i's block
     for (int i = 0; i < p.n; ++i) {
         const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
         diagonal[to_new[i]] = row[i];
         if (structural && (i == 0 || build_.block_of[i] != build_.block_of[i - 1]))
-            mark_coupled_blocks(p, build_.block_of[i], coupled);
+            mark_coupled_blocks(blocks, build_.block_of[i], coupled);
         for (int j = 0; j < i; ++j)
             if (row[j] != 0 || (structural && coupled[build_.block_of[j]])) {
                 const int a = to_new[i], b = to_new[j];

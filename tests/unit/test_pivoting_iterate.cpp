@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "linalg/symmetric_rows.h"
+#include "pivoting/friction_set.h"
 #include "pivoting/iterate.h"
 #include "problems/generators.h"
 
@@ -69,6 +70,51 @@ TEST(TightColumnsProduct, IsTheFullProductOnTheFreeRowsBitForBit) {
     expect_full_product_on_free_rows(assembled, 3);
     std::shuffle(order.begin(), order.end(), std::mt19937(11));
     expect_full_product_on_free_rows(assembled.permuted(order), 4);
+}
+
+// The pivoting loop's later steps refresh w and the scales on the rows that can be tight only
+// (refresh_bounded_residual); completing them must give the full refresh's vectors to the bit,
+// or the answer's residuals would depend on how many steps it took.
+TEST(BoundedResidual, CompletedItIsTheFullRefreshBitForBit) {
+    const auto owned = problems::chain_mlcp(30, 12);  // joint rows (unbounded) and contacts
+    const Problem p = owned.view();
+    const SymmetricRows A(p, {});
+    std::vector<int> identity(static_cast<std::size_t>(A.n()));
+    std::iota(identity.begin(), identity.end(), 0);
+    BoxedLcp lcp;
+    FrictionSet friction;
+    build_boxed_lcp(p, A, identity, lcp, friction);
+    lcp.shift = 1e-6;
+    int always_free = 0;
+    for (char f : lcp.always_free) always_free += f;
+    ASSERT_GT(always_free, 0);
+    ASSERT_LT(always_free, A.n());
+
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> value(-2.0, 2.0);
+    std::vector<double> x(static_cast<std::size_t>(A.n()));
+    for (double& v : x) v = value(rng);
+    Iterate full, partial;
+    refresh_residual(lcp, x, full);
+    EXPECT_TRUE(full.complete);
+    partial.w.assign(x.size(), 12345.0);  // stale values from an earlier iterate
+    partial.scale.assign(x.size(), 12345.0);
+    refresh_bounded_residual(lcp, x, partial);
+    EXPECT_FALSE(partial.complete);
+    for (int i = 0; i < A.n(); ++i) {
+        if (lcp.always_free[i]) {
+            EXPECT_EQ(partial.w[i], 12345.0) << "row " << i << " is never read before completion";
+        } else {
+            EXPECT_TRUE(same_bits(partial.w[i], full.w[i])) << "row " << i;
+            EXPECT_TRUE(same_bits(partial.scale[i], full.scale[i])) << "row " << i;
+        }
+    }
+    complete_residual(lcp, x, partial);
+    EXPECT_TRUE(partial.complete);
+    for (int i = 0; i < A.n(); ++i) {
+        EXPECT_TRUE(same_bits(partial.w[i], full.w[i])) << "row " << i;
+        EXPECT_TRUE(same_bits(partial.scale[i], full.scale[i])) << "row " << i;
+    }
 }
 
 }  // namespace

@@ -230,17 +230,7 @@ void SymmetricRows::abs_multiply(const std::vector<double>& x, double shift, std
 }
 
 void SymmetricRows::multiply_with_scale(const double* x, double shift, double* y, double* scale) const {
-    for (int i = 0; i < n_; ++i) {
-        const double d = (diag_[i] + shift) * x[i];
-        double sum = d, abs_sum = std::abs(d);
-        for (int k = rowptr_[i]; k < rowptr_[i + 1]; ++k) {
-            const double term = val_[k] * x[col_[k]];
-            sum += term;
-            abs_sum += std::abs(term);
-        }
-        y[i] = sum;
-        scale[i] = abs_sum;
-    }
+    for (int i = 0; i < n_; ++i) row_with_scale(i, x, shift, y[i], scale[i]);
 }
 
 std::vector<int> SymmetricRows::row_profile() const {

@@ -8,6 +8,7 @@
 // straight from the Jacobian (ode/assemble.h); both give the same rows, so one path follows.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "ode_bpp/solver.h"
@@ -91,6 +92,20 @@ public:
     /// y = (Ap + shift I) x and scale = |Ap + shift I| |x| in one pass over the entries (the
     /// pivoting loop's w and tolerance scale of Eq. 5), n entries each.
     void multiply_with_scale(const double* x, double shift, double* y, double* scale) const;
+    /// Row i of multiply_with_scale, summed as it sums it (the diagonal term first, then the
+    /// row's entries in stored order), so that a row computed alone equals the same row of the
+    /// whole product bit for bit.
+    void row_with_scale(int i, const double* x, double shift, double& y, double& scale) const {
+        const double d = (diag_[i] + shift) * x[i];
+        double sum = d, abs_sum = std::abs(d);
+        for (int k = rowptr_[i]; k < rowptr_[i + 1]; ++k) {
+            const double term = val_[k] * x[col_[k]];
+            sum += term;
+            abs_sum += std::abs(term);
+        }
+        y = sum;
+        scale = abs_sum;
+    }
     /// Row profile of the lower triangle, stored order: first[i] = min({i} U {j < i : Ap(i,j)
     /// stored}): the non-zeros and, with row blocks, A's structural pattern (see the constructor).
     std::vector<int> row_profile() const;

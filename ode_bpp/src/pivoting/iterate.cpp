@@ -6,15 +6,44 @@
 
 namespace ode_bpp::pivoting {
 
-void refresh_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it) {
+namespace {
+
+/// Rows i with take(i) of w = (A + shift I) x - b and of the scale |A + shift I||x| + |b|.
+template <typename Take>
+void refresh_rows(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it, Take take) {
     const int n = lcp.n();
     it.w.resize(static_cast<std::size_t>(n));
     it.scale.resize(static_cast<std::size_t>(n));
-    lcp.A->multiply_with_scale(x.data(), lcp.shift, it.w.data(), it.scale.data());
+    const linalg::SymmetricRows& A = *lcp.A;
+    const double* xs = x.data();
+    double* w = it.w.data();
+    double* scale = it.scale.data();
     for (int i = 0; i < n; ++i) {
-        it.w[i] -= lcp.b[i];
-        it.scale[i] += std::abs(lcp.b[i]);
+        if (!take(i)) continue;
+        A.row_with_scale(i, xs, lcp.shift, w[i], scale[i]);
+        w[i] -= lcp.b[i];
+        scale[i] += std::abs(lcp.b[i]);
     }
+}
+
+}  // namespace
+
+void refresh_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it) {
+    refresh_rows(lcp, x, it, [](int) { return true; });
+    it.complete = true;
+}
+
+void refresh_bounded_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it) {
+    const char* unbounded = lcp.always_free.data();
+    refresh_rows(lcp, x, it, [unbounded](int i) { return !unbounded[i]; });
+    it.complete = std::find(lcp.always_free.begin(), lcp.always_free.end(), 1) == lcp.always_free.end();
+}
+
+void complete_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it) {
+    if (it.complete) return;
+    const char* unbounded = lcp.always_free.data();
+    refresh_rows(lcp, x, it, [unbounded](int i) { return unbounded[i] != 0; });
+    it.complete = true;
 }
 
 void tight_columns_product(const linalg::SymmetricRows& A, const std::vector<char>& tight, const std::vector<double>& x,

@@ -13,10 +13,26 @@ namespace ode_bpp::pivoting {
 /// w, the row scales and the bounds in force (moving friction bounds change them), n entries each.
 struct Iterate {
     std::vector<double> w, scale, lo, hi;
+    /// w and scale hold x's values on every row; else only on the rows that can be tight
+    /// (refresh_bounded_residual), and the always-free rows hold whatever they held before.
+    bool complete = false;
 };
 
 /// w = (A + shift I) x - b and scale = |A + shift I||x| + |b|, from x (n entries).
 void refresh_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it);
+
+/// The same on the rows that can be tight only (not BoxedLcp::always_free): an always-free row
+/// keeps its infinite bounds, so Eq. 4 never reads its w or scale (classify_row.h), nor does the
+/// polish, which reads tight rows. On ODE's islands these are the joints' rows, with 43-95 % of
+/// A's entries on the paper's scenes (docs/benchmarks.md), so a later pivot step skips most of
+/// the product. Each row is summed as refresh_residual sums it (SymmetricRows::row_with_scale):
+/// complete_residual then gives the same vectors bit for bit.
+void refresh_bounded_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it);
+
+/// Fills in the always-free rows refresh_bounded_residual left, at the same x; nothing
+/// when it is complete already. For what reads every row: Eq. 6's backward error (the accuracy
+/// guard) and the residuals of the answer.
+void complete_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it);
 
 /// y_i = (A_FT x_T)_i on the free rows (tight[i] == 0; y's tight rows are not meaningful), Eq. 6's
 /// right-hand side without b: a pass over the rows of the tight columns with x_j != 0 only (A symmetric),

@@ -147,6 +147,7 @@ public:
         if (outcome == LoopOutcome::Converged && settings_.polish && lcp_.shift == 0)
             polish(states, x, settings_.max_pivots - steps_taken_);
         if (outcome == LoopOutcome::Converged && lcp_.shift == 0) {  // w, scale of it() are x's
+            complete_residual(lcp_, x, it());
             ws_.answer = x;
             ws_.answer_kept = true;
         }
@@ -263,7 +264,7 @@ private:
         tight_columns_product(*lcp_.A, ws_.tight, x, ws_.columns, ws_.Ax);
         FactorOutcome outcome = solve_free(x, /*fresh=*/false);
         if (outcome == FactorOutcome::Breakdown) return false;
-        if (outcome == FactorOutcome::Deleted && ws_.linked.empty() && free_residual() > accuracy_limit()) {
+        if (outcome == FactorOutcome::Deleted && ws_.linked.empty() && free_residual(x) > accuracy_limit()) {
             // MuJoCo-style loss-of-accuracy guard: a deleted factor that misses Eq. 6 by more
             // than a fresh factor would is replaced by a refactorization for this step.
             ++counters_.accuracy_refactors;
@@ -287,11 +288,21 @@ private:
         return outcome;
     }
 
-    void refresh_w(const std::vector<double>& x) { refresh_residual(lcp_, x, it()); }
+    /// w and the scales: on every row at a run's first step, which with a warm start is most
+    /// often its last, so that the answer needs no second pass; on the rows Eq. 4 reads only
+    /// (refresh_bounded_residual) at the later ones.
+    void refresh_w(const std::vector<double>& x) {
+        if (steps_taken_ <= 1) refresh_residual(lcp_, x, it());
+        else refresh_bounded_residual(lcp_, x, it());
+    }
 
     double value_at(int i, RowState s) const { return s == RowState::AtLo ? it().lo[i] : it().hi[i]; }
 
-    double free_residual() const { return pivoting::free_residual(it(), ws_.tight); }
+    /// Eq. 6's backward error at x, the step's iterate, over every free row.
+    double free_residual(const std::vector<double>& x) {
+        complete_residual(lcp_, x, it());
+        return pivoting::free_residual(it(), ws_.tight);
+    }
     double accuracy_limit() const { return pivoting::accuracy_limit(settings_.tolerance, n_); }
 
     /// Eq. 4 row by row (classify_row.h).
@@ -320,7 +331,8 @@ private:
 
     /// Completes the snapshot that remember_if_best began, from the step's x, it() and inf,
     /// which must be unchanged since. w and the scales are swapped in (the next step rewrites
-    /// all of them, refresh_residual); the bounds are copied (moving bounds change only some).
+    /// the rows it reads, and the rest are marked stale by it); the bounds are copied (moving
+    /// bounds change only some).
     void settle_best(const std::vector<double>& x) {
         if (!best_pending_) return;
         best_pending_ = false;
@@ -328,6 +340,7 @@ private:
         ws_.best.x = x;
         kept.w.swap(it().w);
         kept.scale.swap(it().scale);
+        kept.complete = it().complete;
         kept.lo = it().lo;
         kept.hi = it().hi;
         ws_.best_inf = ws_.inf;

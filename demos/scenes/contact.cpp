@@ -46,22 +46,44 @@ SuccessReport judge_standing(const std::vector<PlacedBody>& boxes, double edge) 
     return {drift < kStandingDrift * edge && upright > kStandingCosine, d.str()};
 }
 
-SuccessReport judge_pile(const std::vector<dBodyID>& bodies, const char* what, Vec3 centre, Vec3 inner) {
+namespace {
+
+double mean_speed(const std::vector<dBodyID>& bodies) {
+    double mean = 0;
+    for (dBodyID b : bodies) mean += norm(to_vec(dBodyGetLinearVel(b))) / static_cast<double>(bodies.size());
+    return mean;
+}
+
+}  // namespace
+
+void SettlingSpeed::observe(const std::vector<dBodyID>& bodies, double t) {
+    last_second_.emplace_back(t, mean_speed(bodies));
+    while (last_second_.front().first < t - 1.0) last_second_.pop_front();
+}
+
+double SettlingSpeed::value(const std::vector<dBodyID>& bodies) const {
+    if (last_second_.empty()) return mean_speed(bodies);
+    double sum = 0;
+    for (const auto& [t, speed] : last_second_) sum += speed;
+    return sum / static_cast<double>(last_second_.size());
+}
+
+SuccessReport judge_pile(const std::vector<dBodyID>& bodies, const SettlingSpeed& settling, const char* what,
+                         Vec3 centre, Vec3 inner) {
     int outside = 0;
-    double fastest = 0, mean_speed = 0, highest = 0;
+    double fastest = 0, highest = 0;
     for (dBodyID b : bodies) {
         const Vec3 p = position(b);
-        const double speed = norm(to_vec(dBodyGetLinearVel(b)));
         outside += std::abs(p.x - centre.x) < 0.5 * inner.x && std::abs(p.y - centre.y) < 0.5 * inner.y && p.z > 0 ? 0 : 1;
-        fastest = std::max(fastest, speed);
-        mean_speed += speed / static_cast<double>(bodies.size());
+        fastest = std::max(fastest, norm(to_vec(dBodyGetLinearVel(b))));
         highest = std::max(highest, p.z);
     }
+    const double settled = settling.value(bodies);
     std::ostringstream d;
-    d << bodies.size() << ' ' << what << ": " << outside << " outside the bin (needs 0), mean speed " << mean_speed
-      << " m/s (< " << kSettledSpeed << "), fastest " << fastest << " m/s (< " << kThrownSpeed << "), highest centre "
-      << highest << " m (wall " << inner.z << ")";
-    return {outside == 0 && mean_speed < kSettledSpeed && fastest < kThrownSpeed && highest < inner.z, d.str()};
+    d << bodies.size() << ' ' << what << ": " << outside << " outside the bin (needs 0), mean speed over the last second "
+      << settled << " m/s (< " << kSettledSpeed << "), fastest " << fastest << " m/s (< " << kThrownSpeed
+      << "), highest centre " << highest << " m (wall " << inner.z << ")";
+    return {outside == 0 && settled < kSettledSpeed && fastest < kThrownSpeed && highest < inner.z, d.str()};
 }
 
 void turn_at_random(dBodyID body, Vec3 at, double max_angle, SceneRandom& random) {

@@ -20,7 +20,7 @@ class Bin final : public Scene {
 public:
     std::string name() const override { return "bin"; }
     std::string description() const override { return "64 capsules dropped into a bin, settling into a pile"; }
-    double default_seconds() const override { return 5.0; }
+    double default_seconds() const override { return 7.0; }
 
     void build(SceneWorld& w) override {
         add_bin(w, kBinCentre, kBinInner, kWall);
@@ -39,7 +39,11 @@ public:
         }
     }
 
-    SuccessReport success(const SceneWorld&) const override { return judge_pile(capsules_, "capsules", kBinCentre, kBinInner); }
+    void control(SceneWorld&, double t) override { settling_.observe(capsules_, t); }
+
+    SuccessReport success(const SceneWorld&) const override {
+        return judge_pile(capsules_, settling_, "capsules", kBinCentre, kBinInner);
+    }
 
 private:
     void add_capsule_body(SceneWorld& w, Vec3 at, Vec3 along, SceneRandom& random) {
@@ -51,6 +55,7 @@ private:
     }
 
     std::vector<dBodyID> capsules_;
+    SettlingSpeed settling_;
 };
 
 }  // namespace

@@ -36,7 +36,11 @@ public:
                 }
     }
 
-    SuccessReport success(const SceneWorld&) const override { return judge_pile(rocks_, "rocks", kBinCentre, kBinInner); }
+    void control(SceneWorld&, double t) override { settling_.observe(rocks_, t); }
+
+    SuccessReport success(const SceneWorld&) const override {
+        return judge_pile(rocks_, settling_, "rocks", kBinCentre, kBinInner);
+    }
 
 private:
     void add_rock(SceneWorld& w, Vec3 at, SceneRandom& random) {
@@ -49,6 +53,7 @@ private:
     }
 
     std::vector<dBodyID> rocks_;
+    SettlingSpeed settling_;
 };
 
 }  // namespace

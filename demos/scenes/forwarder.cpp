@@ -53,6 +53,11 @@ constexpr double kGripForce = 4e4, kLiftForce = 6e5, kHoldForce = 6e5;
 constexpr double kSlewTorque = 6e4, kRotatorTorque = 3e3, kBrakeTorque = 1.5e3;
 constexpr double kClawSpeed = 0.15, kLiftSpeed = 0.06, kSlewSpeed = 0.3;
 constexpr double kGripStart = 0.5, kLiftStart = 4, kLiftEnd = 10, kSlewStart = 11, kSlewEnd = 15;
+// The held load, judged from a second after the slew to the end: the bundle keeps rocking in the
+// claws with every exact solver, so the logs' speed at the last step decided on the phase of the
+// rocking (docs/modelling.md, "Criteria that survive rounding"). Its mean over the hold does
+// not, and a log that slips out moves at metres per second for the rest of the run.
+constexpr double kHoldFrom = kSlewEnd + 1, kHeldSlip = 1.0;
 
 Vec3 planar(double x, double z) { return {x, 0, z}; }
 
@@ -103,27 +108,52 @@ public:
         drive_hinge(slew_, slew, kSlewTorque);
         drive_hinge(rotator_, servo_velocity(dJointGetHingeAngle(rotator_), 0, 0.5), kRotatorTorque);
         for (dJointID j : brakes_) drive_hinge(j, 0, kBrakeTorque);
+        if (t >= kHoldFrom) {
+            double fastest = 0;
+            for (const PlacedLog& log : logs_) fastest = std::max(fastest, slip_speed(log.body));
+            slip_sum_ += fastest;
+            ++slip_steps_;
+        }
     }
 
     SuccessReport success(const SceneWorld& w) const override {
         const Vec3 frame = position(frame_);
-        double lift = std::numeric_limits<double>::infinity(), off_centre = 0, speed = 0;
+        double lift = std::numeric_limits<double>::infinity(), off_centre = 0;
         for (const PlacedLog& log : logs_) {
             const Vec3 at = position(log.body);
             lift = std::min(lift, at.z - log.rest_height);
             off_centre = std::max(off_centre, std::hypot(at.x - frame.x, at.y - frame.y));
-            speed = std::max(speed, norm(to_vec(dBodyGetLinearVel(log.body))));
         }
+        const double held_slip = mean_held_slip();
         const double slewed = std::abs(dJointGetHingeAngle(slew_)) * 180 / 3.14159265358979323846;
         std::ostringstream d;
         d << "every log lifted at least " << lift << " m (needs 0.8), at most " << off_centre
-          << " m from the grapple's axis (< 0.5), speed " << speed << " m/s (< 0.5), slewed "
+          << " m from the grapple's axis (< 0.5), fastest log's mean slip in the grapple from " << kHoldFrom << " s "
+          << held_slip << " m/s (< " << kHeldSlip << "), slewed "
           << slewed << " deg (needs 30), joint gap " << w.max_joint_error() << " m (< 0.01)";
-        return {lift > 0.8 && off_centre < 0.5 && speed < 0.5 && slewed > 30 && w.max_joint_error() < 0.01,
+        return {lift > 0.8 && off_centre < 0.5 && held_slip < kHeldSlip && slewed > 30 && w.max_joint_error() < 0.01,
                 d.str()};
     }
 
 private:
+    /// A log's speed relative to the grapple frame at the log's centre: how fast it moves in the
+    /// claws, not with the swaying crane.
+    double slip_speed(dBodyID log) const {
+        const Vec3 at = position(log);
+        dVector3 frame_velocity;
+        dBodyGetPointVel(frame_, at.x, at.y, at.z, frame_velocity);
+        return norm(to_vec(dBodyGetLinearVel(log)) - to_vec(frame_velocity));
+    }
+
+    /// The fastest log's slip averaged over the steps from kHoldFrom; at the end alone for a
+    /// runner that never called control (or stopped before kHoldFrom).
+    double mean_held_slip() const {
+        if (slip_steps_ > 0) return slip_sum_ / static_cast<double>(slip_steps_);
+        double fastest = 0;
+        for (const PlacedLog& log : logs_) fastest = std::max(fastest, slip_speed(log.body));
+        return fastest;
+    }
+
     // The carrier: frame and load as one box under the slewing column, on four bogies that
     // pivot about their axles, each with two wheels (geoms of the bogie: the drive train is not
     // in the scene) on the ground.
@@ -224,6 +254,8 @@ private:
         double rest_height;
     };
     std::vector<PlacedLog> logs_;
+    double slip_sum_ = 0;   ///< the fastest log's slip in the grapple, summed over the steps from kHoldFrom (control)
+    long slip_steps_ = 0;
     std::vector<dJointID> holds_, brakes_;
     double lift_target_ = 0;
 };

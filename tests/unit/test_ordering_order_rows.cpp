@@ -77,13 +77,29 @@ TEST(OrderingOrderRows, BlockOrderKeepsEachBlockContiguousAndInOrder) {
 TEST(OrderingOrderRows, InconsistentBlocksFallBackToTheRowGraph) {
     std::mt19937 rng(73);
     const Island island = winch(12, rng);
-    std::vector<int> bad_rows = island.blocks.block_row;
-    bad_rows.back() += 1;  // claims one row more than A has
+    const int blocks = island.blocks.num_blocks();
+    // every block on a body of its own: the block graph has no edge, so numbering the blocks
+    // keeps them in order, which numbering A's rows does not; a fallback shows
+    std::vector<int> own_bodies;
+    for (int k = 0; k < blocks; ++k) own_bodies.insert(own_bodies.end(), {k, -1});
+    const auto order = [&](const std::vector<int>& block_row, const std::vector<int>& block_body) {
+        return ordering::order_rows(island.n(), island.rows.data(), island.n(), static_cast<int>(block_row.size()) - 1,
+                                    block_row.data(), block_body.data(), OrderingKind::CuthillMcKee, nullptr);
+    };
     const auto from_rows = island.order(OrderingKind::CuthillMcKee, false);
-    const auto from_bad = ordering::order_rows(island.n(), island.rows.data(), island.n(), island.blocks.num_blocks(),
-                                               bad_rows.data(), island.blocks.block_body.data(),
-                                               OrderingKind::CuthillMcKee, nullptr);
-    EXPECT_EQ(from_bad, from_rows);
+    ASSERT_EQ(order(island.blocks.block_row, own_bodies), identity(island.n()));
+    ASSERT_NE(from_rows, identity(island.n()));
+
+    std::vector<int> past_the_end = island.blocks.block_row;
+    past_the_end.back() += 1;  // claims one row more than A has
+    EXPECT_EQ(order(past_the_end, own_bodies), from_rows);
+    // an empty block (a repeated block_row entry) breaks the tiling rule too (structure_rules.h)
+    std::vector<int> with_empty = island.blocks.block_row;
+    with_empty.insert(with_empty.begin() + 1, with_empty[1]);
+    std::vector<int> bodies_with_empty = own_bodies;
+    bodies_with_empty.insert(bodies_with_empty.end(), {blocks, -1});
+    EXPECT_EQ(order(with_empty, bodies_with_empty), from_rows);
+
     const Island& i = island;
     const std::vector<int> expected = ordering::cuthill_mckee(ordering::graph_from_lower(i.rows.data(), i.n(), i.n()), false);
     EXPECT_EQ(from_rows, expected);

@@ -7,17 +7,17 @@
 
 #include "ordering/cuthill_mckee.h"
 #include "ordering/graph.h"
+#include "structure_rules.h"
 
 namespace ode_bpp::ordering {
 
 namespace {
 
+/// Row blocks that tile rows 0 .. n-1 (structure_rules.h, the rule validate() applies): only then
+/// does numbering the blocks number the rows.
 bool blocks_consistent(int n, int num_blocks, const int* block_row, const int* block_body) {
     if (num_blocks <= 0 || block_row == nullptr || block_body == nullptr) return false;
-    if (block_row[0] != 0 || block_row[num_blocks] != n) return false;
-    for (int k = 0; k < num_blocks; ++k)
-        if (block_row[k + 1] < block_row[k]) return false;
-    return true;
+    return !check_block_row(block_row, num_blocks, n);
 }
 
 std::vector<int> identity_order(int n) {

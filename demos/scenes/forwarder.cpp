@@ -109,9 +109,7 @@ public:
         drive_hinge(rotator_, servo_velocity(dJointGetHingeAngle(rotator_), 0, 0.5), kRotatorTorque);
         for (dJointID j : brakes_) drive_hinge(j, 0, kBrakeTorque);
         if (t >= kHoldFrom) {
-            double fastest = 0;
-            for (const PlacedLog& log : logs_) fastest = std::max(fastest, slip_speed(log.body));
-            slip_sum_ += fastest;
+            slip_sum_ += fastest_slip();
             ++slip_steps_;
         }
     }
@@ -136,22 +134,23 @@ public:
     }
 
 private:
-    /// A log's speed relative to the grapple frame at the log's centre: how fast it moves in the
-    /// claws, not with the swaying crane.
-    double slip_speed(dBodyID log) const {
-        const Vec3 at = position(log);
-        dVector3 frame_velocity;
-        dBodyGetPointVel(frame_, at.x, at.y, at.z, frame_velocity);
-        return norm(to_vec(dBodyGetLinearVel(log)) - to_vec(frame_velocity));
+    /// The largest speed of a log relative to the grapple frame at the log's centre: how fast a
+    /// log moves in the claws, not with the swaying crane.
+    double fastest_slip() const {
+        double fastest = 0;
+        for (const PlacedLog& log : logs_) {
+            const Vec3 at = position(log.body);
+            dVector3 frame_velocity;
+            dBodyGetPointVel(frame_, at.x, at.y, at.z, frame_velocity);
+            fastest = std::max(fastest, norm(to_vec(dBodyGetLinearVel(log.body)) - to_vec(frame_velocity)));
+        }
+        return fastest;
     }
 
-    /// The fastest log's slip averaged over the steps from kHoldFrom; at the end alone for a
-    /// runner that never called control (or stopped before kHoldFrom).
+    /// fastest_slip averaged over the steps from kHoldFrom; at the end alone for a runner that
+    /// never called control (or stopped before kHoldFrom).
     double mean_held_slip() const {
-        if (slip_steps_ > 0) return slip_sum_ / static_cast<double>(slip_steps_);
-        double fastest = 0;
-        for (const PlacedLog& log : logs_) fastest = std::max(fastest, slip_speed(log.body));
-        return fastest;
+        return slip_steps_ > 0 ? slip_sum_ / static_cast<double>(slip_steps_) : fastest_slip();
     }
 
     // The carrier: frame and load as one box under the slewing column, on four bogies that

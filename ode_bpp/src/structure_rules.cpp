@@ -35,6 +35,10 @@ std::optional<StructureIssue> check_block_row(const int* block_row, int num_bloc
     return std::nullopt;
 }
 
+bool blocks_tile_rows(int n, int num_blocks, const int* block_row, const int* block_body) {
+    return num_blocks > 0 && block_row != nullptr && block_body != nullptr && !check_block_row(block_row, num_blocks, n);
+}
+
 std::optional<StructureIssue> check_block_body(const int* block_body, int num_blocks, int num_bodies) {
     for (int k = 0; k < 2 * num_blocks; ++k) {
         const int body = block_body[k];

@@ -20,6 +20,10 @@ struct StructureIssue {
 std::optional<StructureIssue> check_findex(const int* findex, int n);
 /// block_row (num_blocks + 1 entries): 0 first, n last, strictly increasing (no empty block).
 std::optional<StructureIssue> check_block_row(const int* block_row, int num_blocks, int n);
+/// True when a problem has row blocks (num_blocks > 0, both arrays given) and they tile rows
+/// 0 .. n-1 by check_block_row: only then do its blocks describe its rows (numbering them, A's
+/// structural pattern).
+bool blocks_tile_rows(int n, int num_blocks, const int* block_row, const int* block_body);
 /// block_body (2 num_blocks entries): each -1 (static environment) or in [0, num_bodies).
 std::optional<StructureIssue> check_block_body(const int* block_body, int num_blocks, int num_bodies);
 

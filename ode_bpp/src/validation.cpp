@@ -135,11 +135,7 @@ bool row_passes(const Problem& p, int i) {
 /// The rules of check_blocks, as one test that names nothing.
 bool blocks_pass(const Problem& p) {
     if (p.num_blocks == 0) return true;
-    if (p.num_blocks < 0 || p.block_row == nullptr || p.block_body == nullptr || p.block_row[0] != 0 ||
-        p.block_row[p.num_blocks] != p.n)
-        return false;
-    for (int k = 1; k <= p.num_blocks; ++k)
-        if (p.block_row[k] <= p.block_row[k - 1]) return false;
+    if (!blocks_tile_rows(p.n, p.num_blocks, p.block_row, p.block_body)) return false;
     for (int k = 0; k < 2 * p.num_blocks; ++k)
         if (p.block_body[k] < -1 || p.block_body[k] == std::numeric_limits<int>::max()) return false;
     return true;

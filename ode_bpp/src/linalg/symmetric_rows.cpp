@@ -19,12 +19,10 @@ SymmetricRows::SymmetricRows(const Problem& p, const std::vector<int>& perm) { a
 
 namespace {
 
-/// block_of[i]: the block of row i, when p's blocks tile its rows (Problem::block_row, the rule
-/// check_block_row states); false, block_of untouched, when p has no blocks or they do not tile.
+/// block_of[i]: the block of row i, when p's blocks tile its rows (blocks_tile_rows); false,
+/// block_of untouched, when p has no blocks or they do not tile.
 bool mark_block_rows(const Problem& p, std::vector<int>& block_of) {
-    if (p.num_blocks <= 0 || p.block_row == nullptr || p.block_body == nullptr ||
-        check_block_row(p.block_row, p.num_blocks, p.n))
-        return false;
+    if (!blocks_tile_rows(p.n, p.num_blocks, p.block_row, p.block_body)) return false;
     block_of.resize(static_cast<std::size_t>(p.n));
     for (int k = 0; k < p.num_blocks; ++k) std::fill(block_of.begin() + p.block_row[k], block_of.begin() + p.block_row[k + 1], k);
     return true;

@@ -13,13 +13,6 @@ namespace ode_bpp::ordering {
 
 namespace {
 
-/// Row blocks that tile rows 0 .. n-1 (structure_rules.h, the rule validate() applies): only then
-/// does numbering the blocks number the rows.
-bool blocks_consistent(int n, int num_blocks, const int* block_row, const int* block_body) {
-    if (num_blocks <= 0 || block_row == nullptr || block_body == nullptr) return false;
-    return !check_block_row(block_row, num_blocks, n);
-}
-
 std::vector<int> identity_order(int n) {
     std::vector<int> perm(static_cast<std::size_t>(n));
     std::iota(perm.begin(), perm.end(), 0);
@@ -62,7 +55,7 @@ std::vector<int> expand_blocks(const std::vector<int>& block_perm, const int* bl
 OrderPair cuthill_mckee_pair(int n, const std::function<Graph()>& row_graph, int num_blocks, const int* block_row,
                              const int* block_body) {
     OrderPair pair;
-    if (blocks_consistent(n, num_blocks, block_row, block_body)) {
+    if (blocks_tile_rows(n, num_blocks, block_row, block_body)) {  // numbering the blocks numbers the rows
         std::vector<int> blocks = cuthill_mckee(block_graph(num_blocks, block_row, block_body), false);
         pair.forward = expand_blocks(blocks, block_row, num_blocks);
         std::reverse(blocks.begin(), blocks.end());

@@ -55,6 +55,7 @@ TEST(LinalgCostModel, MatchesEntryByEntryCounts) {
         const int n = 1 + static_cast<int>(rng() % 40);
         const SkylineShape shape = trial % 5 == 0 ? SkylineShape::dense(n) : random_shape(n, rng);
         const linalg::CostModel model(shape);
+        EXPECT_EQ(linalg::full_refactor_cost(shape), counted_refactor(shape, 0));
         for (int k = 0; k < n; ++k) {
             EXPECT_EQ(model.refactor_cost(k), counted_refactor(shape, k)) << "k0 " << k;
             EXPECT_EQ(model.delete_cost(k), counted_delete(shape, k)) << "i " << k;

@@ -2,8 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 
+#include "linalg/cost_model.h"
 #include "linalg/envelope.h"
+#include "linalg/skyline.h"
 #include "ordering/order_rows.h"
 #include "ordering/ordering_choice.h"
 #include "problems/generators.h"
@@ -65,6 +68,27 @@ TEST(PivotingOrdering, WarmStartChoiceIsNeverPricedAboveTheCandidates) {
             for (const std::vector<char>* last : {static_cast<const std::vector<char>*>(nullptr),
                                                   static_cast<const std::vector<char>*>(&tight)})
                 EXPECT_LE(price, warm_solve_price(A, order(p, kind, last), tight)) << "every " << every;
+    }
+}
+
+/// The bound that prunes candidates before they are priced never exceeds the whole factor's
+/// count, and with every row flagged it counts at least the envelope (each row's w of its
+/// w (w + 1) / 2 terms are its own entries).
+TEST(PivotingOrdering, FlaggedRowsBoundTheFactorFromBelow) {
+    const auto owned = problems::chain_mlcp(40, 20);
+    const Problem p = owned.view();
+    const linalg::SymmetricRows A(p, {});
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 12; ++trial) {
+        std::vector<int> perm = order(p, trial % 2 ? ordering::OrderingKind::CuthillMcKee
+                                                   : ordering::OrderingKind::ReverseCuthillMcKee);
+        if (trial >= 4) std::shuffle(perm.begin() + trial, perm.end(), rng);
+        const double whole = linalg::full_refactor_cost(linalg::SkylineShape::from_row_profile(A.row_profile_under(perm)));
+        std::vector<char> some(p.n, 0), all(p.n, 1);
+        for (int i = 0; i < p.n; ++i) some[i] = rng() % 3 == 0;
+        EXPECT_LE(flagged_rows_factor_bound(A, perm, some), flagged_rows_factor_bound(A, perm, all)) << trial;
+        EXPECT_LE(flagged_rows_factor_bound(A, perm, all), whole) << trial;
+        EXPECT_GE(flagged_rows_factor_bound(A, perm, all), static_cast<double>(envelope(A, perm))) << trial;
     }
 }
 

@@ -6,11 +6,20 @@ namespace ode_bpp::linalg {
 
 namespace {
 
-/// Multiply-adds spent on column k by the left-looking update: for every earlier column j
-/// reaching row k (j_first <= j < k), rows k .. sky[j]; computed from prefix sums of sky.
-double column_update_cost(const std::vector<double>& sky_prefix, int j_first, int k) {
-    const double rows_summed = sky_prefix[k] - sky_prefix[j_first];
-    return rows_summed - static_cast<double>(k - j_first) * (k - 1);
+/// Calls column(k, j_first, cost_k) for k = 0 .. n-1, where j_first is the first column j with
+/// sky[j] >= k and cost_k the multiply-adds spent on column k by the left-looking update (for
+/// every earlier column j reaching row k, rows k .. sky[j]) plus its height(k) scalings:
+/// cost_k = sum_{j_first <= j < k} (sky[j] - k + 1) + height(k), from a running window sum of sky.
+template <class Column>
+void for_each_column_cost(const SkylineShape& shape, Column&& column) {
+    double window_sky = 0;  // sum of sky[j] over j_first <= j < k
+    int j_first = 0;
+    for (int k = 0; k < shape.n; ++k) {
+        for (; shape.sky[j_first] < k; ++j_first) window_sky -= shape.sky[j_first];
+        const double update = window_sky - static_cast<double>(k - j_first) * (k - 1);
+        column(k, j_first, update + shape.height(k));
+        window_sky += shape.sky[k];
+    }
 }
 
 }  // namespace
@@ -22,19 +31,21 @@ CostModel::CostModel(const SkylineShape& shape)
       sky_(shape.sky),
       first_column_(static_cast<std::size_t>(shape.n), 0) {
     const int n = shape.n;
-    std::vector<double> sky_prefix(static_cast<std::size_t>(n) + 1, 0.0);
-    for (int k = 0; k < n; ++k) sky_prefix[k + 1] = sky_prefix[k] + shape.sky[k];
     std::vector<double> column_cost(static_cast<std::size_t>(n), 0.0);
-    int j_first = 0;
-    for (int k = 0; k < n; ++k) {
-        while (shape.sky[j_first] < k) ++j_first;
+    for_each_column_cost(shape, [&](int k, int j_first, double cost) {
         first_column_[k] = j_first;
-        column_cost[k] = column_update_cost(sky_prefix, j_first, k) + shape.height(k);
-    }
+        column_cost[k] = cost;
+    });
     for (int k = n - 1; k >= 0; --k) {
         delete_suffix_[k] = delete_suffix_[k + 1] + shape.height(k);
         refactor_suffix_[k] = refactor_suffix_[k + 1] + column_cost[k];
     }
+}
+
+double full_refactor_cost(const SkylineShape& shape) {
+    double total = 0;
+    for_each_column_cost(shape, [&total](int, int, double cost) { total += cost; });
+    return total;
 }
 
 double CostModel::delete_cost(int i) const {

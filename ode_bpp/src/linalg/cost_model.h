@@ -43,4 +43,9 @@ private:
     std::vector<int> first_column_;        ///< n: first column j with sky[j] >= k (nondecreasing)
 };
 
+/// CostModel(shape).refactor_cost(0), the multiply-adds of factoring the whole envelope, without
+/// building the model: O(n), nothing allocated. Pricing an ordering starts with it (its factor
+/// is a lower bound of its price: ordering/ordering_choice.cpp).
+double full_refactor_cost(const SkylineShape& shape);
+
 }  // namespace ode_bpp::linalg

@@ -39,4 +39,10 @@ constexpr double kStepsPerWarmSolve = 3;
 double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight,
                         const std::vector<char>& first_tight = {});
 
+/// A lower bound of linalg::full_refactor_cost in the shape of A under perm (perm[new] = old),
+/// from the rows flagged in `rows` (original space, n flags) alone: O(n + their entries), where
+/// the whole shape costs O(entries of A). Each flagged row of width w adds w (w + 1) / 2.
+double flagged_rows_factor_bound(const linalg::SymmetricRows& A, const std::vector<int>& perm,
+                                 const std::vector<char>& rows);
+
 }  // namespace ode_bpp::ordering

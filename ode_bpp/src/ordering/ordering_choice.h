@@ -23,7 +23,9 @@ enum class FirstSolve {
 ///    envelope; where rows are expected tight (the warm start's, original space, n entries or
 ///    empty, and those of `first`), also both orders with those rows moved last (where deleting
 ///    or refactoring them touches the fewest columns), and the lowest warm_solve_price wins
-///    (moving them can widen the envelope more than it saves).
+///    (moving them can widen the envelope more than it saves). A candidate whose factorization
+///    alone costs at least the best price (flagged_rows_factor_bound, then
+///    linalg::full_refactor_cost) is rejected unpriced: the choice is the same.
 /// A: the problem's matrix in original order (for envelope sizes).
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
                                  const std::vector<RowState>& warm_start, FirstSolve first = FirstSolve::AsWarmStart);

@@ -79,6 +79,18 @@ TEST(OrderingGraph, BlockGraphLinksBlocksSharingABody) {
             if (share) expected.emplace(a, b);
         }
     EXPECT_EQ(edge_set(g), expected);
+    for (int v = 0; v < g.n(); ++v) EXPECT_TRUE(std::is_sorted(g.adj.begin() + g.xadj[v], g.adj.begin() + g.xadj[v + 1]));
+}
+
+/// A block that owns no rows has no entries in A, so it couples nothing, even on a shared body;
+/// a block with both sides on one body is adjacent once to each other block on it.
+TEST(OrderingGraph, BlockGraphLeavesEmptyBlocksAloneAndRepeatsNoNeighbour) {
+    const std::vector<int> block_row = {0, 3, 3, 6, 9};
+    const std::vector<int> block_body = {0, 0, 0, 1, 0, 1, 1, -1};
+    const Graph g = ordering::block_graph(4, block_row.data(), block_body.data());
+    const std::set<std::pair<int, int>> expected = {{0, 2}, {2, 0}, {2, 3}, {3, 2}};
+    EXPECT_EQ(edge_set(g), expected);
+    EXPECT_EQ(g.adj.size(), expected.size());
 }
 
 TEST(OrderingCuthillMcKee, ShuffledPathGetsBandwidthOne) {

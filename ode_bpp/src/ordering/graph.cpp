@@ -50,9 +50,29 @@ Graph graph_from_rows(const linalg::SymmetricRows& A) {
     return g;  // rows are sorted by column, both directions stored, no diagonal: a Graph as is
 }
 
+namespace {
+
+/// Appends to adj the union of two ascending runs of block indices, ascending and without
+/// repeats, leaving out `self`.
+void merge_runs(const std::pair<int, int>* a, const std::pair<int, int>* a_end, const std::pair<int, int>* b,
+                const std::pair<int, int>* b_end, int self, std::vector<int>& adj) {
+    int last = -1;
+    while (a != a_end || b != b_end) {
+        const bool take_a = b == b_end || (a != a_end && a->second <= b->second);
+        const int block = take_a ? (a++)->second : (b++)->second;
+        if (block != self && block != last) adj.push_back(block);
+        last = block;
+    }
+}
+
+}  // namespace
+
 Graph block_graph(int num_blocks, const int* block_row, const int* block_body) {
-    // (body, block) incidences grouped by body: every two blocks on one body are adjacent.
+    // (body, block) incidences, sorted: each body's blocks form one run, in increasing order.
+    // A block's neighbours are the union of its two bodies' runs, so the adjacency comes out
+    // sorted without listing each body's clique of edges (O(sum of run lengths over blocks)).
     std::vector<std::pair<int, int>> incidences;
+    incidences.reserve(2 * static_cast<std::size_t>(num_blocks));
     for (int block = 0; block < num_blocks; ++block) {
         if (block_row && block_row[block + 1] == block_row[block]) continue;
         for (int side = 0; side < 2; ++side) {
@@ -61,15 +81,28 @@ Graph block_graph(int num_blocks, const int* block_row, const int* block_body) {
         }
     }
     std::sort(incidences.begin(), incidences.end());
-    std::vector<std::pair<int, int>> edges;
+    // runs[2 block + k]: the run of the block's k-th incidence, as [begin, end) into incidences
+    std::vector<std::pair<int, int>> runs(2 * static_cast<std::size_t>(num_blocks), {0, 0});
+    std::vector<char> filled(static_cast<std::size_t>(num_blocks), 0);
     for (std::size_t begin = 0; begin < incidences.size();) {
         std::size_t end = begin;
         while (end < incidences.size() && incidences[end].first == incidences[begin].first) ++end;
-        for (std::size_t a = begin; a < end; ++a)
-            for (std::size_t b = a + 1; b < end; ++b) edges.emplace_back(incidences[a].second, incidences[b].second);
+        for (std::size_t k = begin; k < end; ++k) {
+            const int block = incidences[k].second;
+            runs[2 * block + filled[block]++] = {static_cast<int>(begin), static_cast<int>(end)};
+        }
         begin = end;
     }
-    return graph_from_edges(num_blocks, std::move(edges));
+    Graph g;
+    g.xadj.assign(static_cast<std::size_t>(num_blocks) + 1, 0);
+    const std::pair<int, int>* at = incidences.data();
+    for (int block = 0; block < num_blocks; ++block) {
+        const auto [a, a_end] = runs[2 * block];
+        const auto [b, b_end] = runs[2 * block + 1];
+        merge_runs(at + a, at + a_end, at + b, at + b_end, block, g.adj);
+        g.xadj[block + 1] = static_cast<int>(g.adj.size());
+    }
+    return g;
 }
 
 }  // namespace ode_bpp::ordering

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "ode_bpp/residuals.h"
 #include "ode_bpp/solver.h"
@@ -210,6 +211,37 @@ TEST(PivotingLoop, DirectCallLeavesTheFinalIndexSetAndCountsSteps) {
     EXPECT_LT(max_abs_diff(x, *expected), 1e-8);
 }
 
+
+// A run whose answer only feeds a later solve (Frozen friction's frictionless solve) refreshes w
+// on the rows Eq. 4 reads only, from its first step on: the same steps, index set and x to the
+// bit, and no answer kept for the residuals (they would read rows it never computed).
+TEST(PivotingLoop, ARunWithoutACompleteAnswerTakesTheSameStepsAndKeepsNothing) {
+    const auto owned = problems::random_boxed_mlcp(24, 8, 3, 1e2, 17);  // 8 rows never tight
+    const Problem p = owned.view();
+    pivoting::test::DriverLcp driver(p);
+    pivoting::BoxedLcp& lcp = driver.lcp;
+    for (int i : driver.friction.rows) lcp.lo[i] = lcp.hi[i] = 0;  // the frictionless solve
+    ASSERT_TRUE(std::count(lcp.always_free.begin(), lcp.always_free.end(), 1) > 0);
+    std::vector<RowState> states[2];
+    std::vector<double> x[2];
+    pivoting::PivotCounters counters[2];
+    pivoting::LoopWorkspace workspace[2];
+    for (int k : {0, 1}) {
+        pivoting::DenseRefactorBuffers buffers;
+        auto solver = pivoting::make_dense_refactor_solver(driver.A, buffers);
+        ASSERT_TRUE(solver->prepare(0));
+        pivoting::PivotSettings settings;
+        settings.complete_answer = k == 0;
+        ASSERT_EQ(pivoting::pivot_fixed_bounds(lcp, *solver, settings, states[k], x[k], counters[k], workspace[k]),
+                  pivoting::LoopOutcome::Converged);
+    }
+    EXPECT_GT(counters[0].pivots, 1);
+    EXPECT_EQ(counters[1].tight_per_step, counters[0].tight_per_step);
+    EXPECT_EQ(states[1], states[0]);
+    for (int i = 0; i < p.n; ++i) EXPECT_TRUE(std::memcmp(&x[1][i], &x[0][i], sizeof(double)) == 0) << "row " << i;
+    EXPECT_NE(pivoting::converged_iterate(workspace[0], x[0]), nullptr);
+    EXPECT_EQ(pivoting::converged_iterate(workspace[1], x[1]), nullptr);
+}
 
 // The polish (pivot_loop.cpp): a tight set whose multipliers have the wrong sign within the
 // classification tolerance is not kept when freeing those rows converges as well.

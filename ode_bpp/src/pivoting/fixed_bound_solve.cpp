@@ -12,7 +12,9 @@ FixedBoundSolver::FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Opti
                                    PivotCounters& counters, FixedBoundBuffers& buffers)
     : lcp_(lcp), solver_(solver), options_(options), counters_(counters), buffers_(buffers), regularization_(max_diag) {}
 
-FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<double>& x, int budget) {
+FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<double>& x, int budget,
+                                     AnswerUse use) {
+    use_ = use;
     start_ = states;
     if (!continuation_done_) run_continuation(states, x, budget);
     for (;;) {
@@ -132,6 +134,7 @@ PivotSettings FixedBoundSolver::settings(int budget) const {
     s.murty_after = std::max(0, options_.tuning.murty_after);
     s.tolerance = options_.tolerance;
     s.record_steps = options_.record_steps;
+    s.complete_answer = use_ == AnswerUse::Final;
     return s;
 }
 

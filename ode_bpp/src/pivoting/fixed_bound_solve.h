@@ -37,6 +37,13 @@ struct FixedBoundBuffers {
     ActiveSetWorkspace active_set;
 };
 
+/// What a fixed-bound solve's answer is for.
+enum class AnswerUse {
+    Final,         ///< reported: its w and row scales end complete on every row (residuals read them)
+    Intermediate,  ///< read by a later solve through x and the index set only (Frozen friction's
+                   ///< frictionless solve): w is kept on the rows Eq. 4 reads only
+};
+
 class FixedBoundSolver {
 public:
     /// lcp: the problem (its shift is set here); solver: a factor strategy on lcp.A; options:
@@ -47,7 +54,8 @@ public:
 
     /// Solves from `states` (in: the warm start; out: the final index set) within `budget` pivot
     /// steps of the target problem. x: out, n entries.
-    FixedOutcome solve(std::vector<RowState>& states, std::vector<double>& x, int budget);
+    FixedOutcome solve(std::vector<RowState>& states, std::vector<double>& x, int budget,
+                       AnswerUse use = AnswerUse::Final);
 
     /// delta of the problem every answer solves: 0 unless a breakdown raised it.
     double shift() const { return regularization_.target(); }
@@ -68,6 +76,7 @@ private:
     FixedBoundBuffers& buffers_;
     Regularization regularization_;
     std::optional<double> prepared_;       ///< the shift the solver holds a factor of
+    AnswerUse use_ = AnswerUse::Final;     ///< of the solve in progress
     bool continuation_done_ = false;       ///< the up-front continuation runs before the first solve only
     std::vector<RowState> start_, entry_states_;  ///< warm start of a solve; states entering a rescue
     std::vector<double> entry_x_;

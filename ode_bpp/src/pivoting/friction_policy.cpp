@@ -22,7 +22,7 @@ PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const Frictio
     if (friction.empty()) return outcome(fixed.solve(states, x, budget));
     const std::vector<RowState> requested = states;
     friction.set_bounds(lcp, std::vector<double>(friction.size(), 0.0));
-    const FixedOutcome frictionless = fixed.solve(states, x, budget);
+    const FixedOutcome frictionless = fixed.solve(states, x, budget, AnswerUse::Intermediate);
     if (frictionless == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
     friction.set_bounds(lcp, friction.targets(x));
     for (int i : friction.rows) states[i] = requested[i];

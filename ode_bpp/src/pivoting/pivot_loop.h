@@ -30,6 +30,11 @@ struct PivotSettings {
     /// wrong sign beyond the factor's accuracy and pivot on from there (pivot_loop.cpp, polish);
     /// the new answer replaces the first only if it converges too.
     bool polish = true;
+    /// The answer's w and row scales on every row: its residuals read them (solver.cpp). False
+    /// for a run whose answer feeds a later solve through x and the index set only (Frozen
+    /// friction's frictionless solve): every step then refreshes the rows Eq. 4 reads only, and
+    /// the answer is not kept.
+    bool complete_answer = true;
 };
 
 /// Counters accumulated over every run of the loop that a solve makes.

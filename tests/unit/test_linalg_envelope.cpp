@@ -48,8 +48,13 @@ TEST(LinalgEnvelope, ShapeIsTheColumnSkylineOfTheProfile) {
                 if (first[i] <= k) expected = std::max(expected, i);
             EXPECT_EQ(shape.sky[k], expected) << "column " << k;
         }
+        SkylineShape searched = shape;  // a shape without the index searches sky
+        searched.first_column.clear();
+        const SkylineShape dense = SkylineShape::dense(n);
         for (int r = 0; r < n; ++r) {
             const int j = shape.first_column_holding(r);
+            EXPECT_EQ(searched.first_column_holding(r), j) << "row " << r;
+            EXPECT_EQ(dense.first_column_holding(r), 0) << "row " << r;
             EXPECT_GE(shape.sky[j], r);
             if (j > 0) {
                 EXPECT_LT(shape.sky[j - 1], r);

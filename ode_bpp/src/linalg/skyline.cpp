@@ -34,6 +34,7 @@ SkylineShape SkylineShape::from_row_profile(const std::vector<int>& first) {
         shape.sky[k] = reach;
     }
     shape.colptr = packed_column_pointers(shape.sky);
+    shape.index_first_columns();
     return shape;
 }
 
@@ -42,11 +43,21 @@ SkylineShape SkylineShape::dense(int n) {
     shape.n = n;
     shape.sky.assign(static_cast<std::size_t>(n), n - 1);
     shape.colptr = packed_column_pointers(shape.sky);
+    shape.index_first_columns();
     return shape;
 }
 
-int SkylineShape::first_column_holding(int r) const {
+int SkylineShape::search_first_column(int r) const {
     return static_cast<int>(std::lower_bound(sky.begin(), sky.end(), r) - sky.begin());
+}
+
+void SkylineShape::index_first_columns() {
+    first_column.resize(static_cast<std::size_t>(n));
+    int j = 0;  // sky is non-decreasing, so the first column reaching r never moves back
+    for (int r = 0; r < n; ++r) {
+        while (sky[j] < r) ++j;
+        first_column[r] = j;
+    }
 }
 
 bool SkylineShape::valid() const {
@@ -56,6 +67,11 @@ bool SkylineShape::valid() const {
         if (sky[k] < k || sky[k] > n - 1) return false;
         if (k > 0 && sky[k] < sky[k - 1]) return false;
         if (colptr[k + 1] - colptr[k] < height(k)) return false;
+    }
+    if (!first_column.empty()) {
+        if (static_cast<int>(first_column.size()) != n) return false;
+        for (int r = 0; r < n; ++r)
+            if (first_column[r] != search_first_column(r)) return false;
     }
     return true;
 }
@@ -75,6 +91,7 @@ void SkylineMatrix::reshape(const SkylineShape& shape) {
     shape_.n = shape.n;
     shape_.sky = shape.sky;
     shape_.colptr = shape.colptr;
+    shape_.first_column = shape.first_column;
     values_.resize(static_cast<std::size_t>(shape_.size()));
 }
 

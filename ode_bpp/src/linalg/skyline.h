@@ -16,6 +16,10 @@ struct SkylineShape {
     int n = 0;
     std::vector<int> sky;               ///< n: last row stored in column k, sky[k] >= k, non-decreasing
     std::vector<std::ptrdiff_t> colptr; ///< n + 1: start of column k in values; colptr[n] = size
+    /// n: first_column[r] = min{ j : sky[j] >= r } (non-decreasing), what first_column_holding
+    /// returns; made by from_row_profile and dense. Empty in a shape built otherwise, whose
+    /// first_column_holding then searches sky.
+    std::vector<int> first_column;
 
     /// The shape of the envelope of a symmetric matrix given its row profile first[i] <= i
     /// (first non-zero column of row i in the lower triangle): sky[k] = max{ i : first[i] <= k }.
@@ -28,12 +32,20 @@ struct SkylineShape {
     int height(int k) const { return sky[k] - k + 1; }
     /// Smallest column j whose storage holds row r (sky[j] >= r), so row r of L lives in
     /// columns first_column_holding(r) .. r. Deleting row r writes zeros into row r of these
-    /// columns (restore them with SkylineMatrix::copy_rows_from). O(log n).
-    int first_column_holding(int r) const;
+    /// columns (restore them with SkylineMatrix::copy_rows_from). O(1) from first_column (the
+    /// factorization asks it for every column it updates), else O(log n).
+    int first_column_holding(int r) const {
+        return first_column.empty() ? search_first_column(r) : first_column[static_cast<std::size_t>(r)];
+    }
     /// True when sky is non-decreasing with k <= sky[k] <= n-1 and every column fits before
     /// the next one (colptr[k+1] - colptr[k] >= height(k)). Gaps between columns are allowed:
-    /// the kernels never touch them (the tests fill them with NaN to prove it).
+    /// the kernels never touch them (the tests fill them with NaN to prove it); and first_column,
+    /// where present, is sky's.
     bool valid() const;
+
+private:
+    int search_first_column(int r) const;
+    void index_first_columns();
 };
 
 class SkylineMatrix {

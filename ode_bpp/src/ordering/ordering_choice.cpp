@@ -54,9 +54,9 @@ constexpr double kOrderingCostPerEntry = 300;
 /// computing an ordering at all: small islands (every one of up to ~20 rows), where the orderings
 /// made bpp slower than a dense Cholesky of the same frame.
 bool ordering_cannot_pay(const linalg::SymmetricRows& A) {
-    const linalg::CostModel identity(linalg::SkylineShape::from_row_profile(A.row_profile()));
+    const double identity = linalg::full_refactor_cost(linalg::SkylineShape::from_row_profile(A.row_profile()));
     const double nnz = A.n() > 0 ? A.row_end(A.n() - 1) : 0;
-    return kStepsPerWarmSolve * identity.refactor_cost(0) <= kOrderingCostPerEntry * (A.n() + nnz);
+    return kStepsPerWarmSolve * identity <= kOrderingCostPerEntry * (A.n() + nnz);
 }
 
 /// The cheaper of deleting the rows flagged in `tight` (original space) from L0 and refactoring

@@ -231,7 +231,7 @@ TEST(PivotingLoop, ARunWithoutACompleteAnswerTakesTheSameStepsAndKeepsNothing) {
         auto solver = pivoting::make_dense_refactor_solver(driver.A, buffers);
         ASSERT_TRUE(solver->prepare(0));
         pivoting::PivotSettings settings;
-        settings.complete_answer = k == 0;
+        settings.answer = k == 0 ? pivoting::AnswerUse::Final : pivoting::AnswerUse::Intermediate;
         ASSERT_EQ(pivoting::pivot_fixed_bounds(lcp, *solver, settings, states[k], x[k], counters[k], workspace[k]),
                   pivoting::LoopOutcome::Converged);
     }

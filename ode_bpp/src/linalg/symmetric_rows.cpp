@@ -252,11 +252,7 @@ void SymmetricRows::row_profile(std::vector<int>& first) const {
 std::vector<int> SymmetricRows::row_profile_under(const std::vector<int>& perm) const {
     const std::vector<int> to_new = inverse_permutation(perm);
     std::vector<int> first(static_cast<std::size_t>(n_));
-    for (int i = 0; i < n_; ++i) {
-        int f = i;
-        for (int k = row_begin(perm[i]); k < row_end(perm[i]); ++k) f = std::min(f, to_new[col_[k]]);
-        first[i] = f;
-    }
+    for (int i = 0; i < n_; ++i) first[i] = first_under(perm[i], to_new);
     return first;
 }
 

@@ -8,6 +8,7 @@
 // straight from the Jacobian (ode/assemble.h); both give the same rows, so one path follows.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -115,6 +116,13 @@ public:
     void row_profile(std::vector<int>& first) const;
     /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.
     std::vector<int> row_profile_under(const std::vector<int>& perm) const;
+    /// Its entry for one row: the first column of stored row `row` (stored order) once the rows
+    /// are renumbered by to_new (to_new[stored] = new), within row to_new[row]'s lower triangle.
+    int first_under(int row, const std::vector<int>& to_new) const {
+        int first = to_new[static_cast<std::size_t>(row)];
+        for (int k = row_begin(row); k < row_end(row); ++k) first = std::min(first, to_new[col_[k]]);
+        return first;
+    }
     /// The lower triangle, diagonal included, as a dense row-major n x n array with row stride
     /// lda (the upper triangle is left as it is), in the order the matrix was built in (order()
     /// undone). O(n^2): for ODE's Dantzig and file capture.

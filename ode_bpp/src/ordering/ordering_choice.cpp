@@ -112,9 +112,7 @@ double flagged_rows_factor_bound(const linalg::SymmetricRows& A, const std::vect
     double bound = 0;
     for (int i = 0; i < A.n(); ++i) {
         if (!rows[perm[i]]) continue;
-        int first = i;
-        for (int k = A.row_begin(perm[i]); k < A.row_end(perm[i]); ++k) first = std::min(first, to_new[A.col(k)]);
-        const double width = i - first + 1;
+        const double width = i - A.first_under(perm[i], to_new) + 1;
         bound += width * (width + 1) / 2;
     }
     return bound;

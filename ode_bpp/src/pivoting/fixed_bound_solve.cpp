@@ -134,7 +134,7 @@ PivotSettings FixedBoundSolver::settings(int budget) const {
     s.murty_after = std::max(0, options_.tuning.murty_after);
     s.tolerance = options_.tolerance;
     s.record_steps = options_.record_steps;
-    s.complete_answer = use_ == AnswerUse::Final;
+    s.answer = use_;
     return s;
 }
 

@@ -37,13 +37,6 @@ struct FixedBoundBuffers {
     ActiveSetWorkspace active_set;
 };
 
-/// What a fixed-bound solve's answer is for.
-enum class AnswerUse {
-    Final,         ///< reported: its w and row scales end complete on every row (residuals read them)
-    Intermediate,  ///< read by a later solve through x and the index set only (Frozen friction's
-                   ///< frictionless solve): w is kept on the rows Eq. 4 reads only
-};
-
 class FixedBoundSolver {
 public:
     /// lcp: the problem (its shift is set here); solver: a factor strategy on lcp.A; options:

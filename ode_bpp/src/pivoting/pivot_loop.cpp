@@ -146,7 +146,7 @@ public:
         const LoopOutcome outcome = pivot(states, x, settings_.max_pivots);
         if (outcome == LoopOutcome::Converged && settings_.polish && lcp_.shift == 0)
             polish(states, x, settings_.max_pivots - steps_taken_);
-        if (outcome == LoopOutcome::Converged && lcp_.shift == 0 && settings_.complete_answer) {  // w, scale of it() are x's
+        if (outcome == LoopOutcome::Converged && lcp_.shift == 0 && settings_.answer == AnswerUse::Final) {  // w, scale of it() are x's
             complete_residual(lcp_, x, it());
             ws_.answer = x;
             ws_.answer_kept = true;
@@ -291,9 +291,9 @@ private:
     /// w and the scales: on every row at a run's first step, which with a warm start is most
     /// often its last, so that the answer needs no second pass; on the rows Eq. 4 reads only
     /// (refresh_bounded_residual) at the later ones, and at every step of a run whose answer is
-    /// not read whole (PivotSettings::complete_answer).
+    /// not read whole (AnswerUse::Intermediate).
     void refresh_w(const std::vector<double>& x) {
-        if (steps_taken_ <= 1 && settings_.complete_answer) refresh_residual(lcp_, x, it());
+        if (steps_taken_ <= 1 && settings_.answer == AnswerUse::Final) refresh_residual(lcp_, x, it());
         else refresh_bounded_residual(lcp_, x, it());
     }
 

@@ -15,6 +15,15 @@ namespace ode_bpp::pivoting {
 
 /// What one run of the loop may do; the defaults are Options' and Tuning's (fixed_bound_solve.cpp
 /// derives every run's settings from them).
+/// What a run's (or a fixed-bound solve's) answer is for.
+enum class AnswerUse {
+    Final,         ///< reported: its w and row scales end complete on every row (its residuals
+                   ///< read them, solver.cpp), and the workspace keeps it (converged_iterate)
+    Intermediate,  ///< read by a later solve through x and the index set only (Frozen friction's
+                   ///< frictionless solve): every step refreshes the rows Eq. 4 reads only, and
+                   ///< nothing is kept
+};
+
 struct PivotSettings {
     int max_pivots = Options{}.max_pivots;       ///< solves of Eq. 6 allowed in this run
     int murty_after = Tuning{}.murty_after;      ///< block steps without a new minimum of infeasible rows before Murty
@@ -30,11 +39,7 @@ struct PivotSettings {
     /// wrong sign beyond the factor's accuracy and pivot on from there (pivot_loop.cpp, polish);
     /// the new answer replaces the first only if it converges too.
     bool polish = true;
-    /// The answer's w and row scales on every row: its residuals read them (solver.cpp). False
-    /// for a run whose answer feeds a later solve through x and the index set only (Frozen
-    /// friction's frictionless solve): every step then refreshes the rows Eq. 4 reads only, and
-    /// the answer is not kept.
-    bool complete_answer = true;
+    AnswerUse answer = AnswerUse::Final;
 };
 
 /// Counters accumulated over every run of the loop that a solve makes.

@@ -77,9 +77,10 @@ SharedSides shared_sides(const dMLCPJoint& p, const dMLCPJoint& q) {
 /// Row i of joint p against the rows j of joint q (q == p or earlier) before j_end: the entries
 /// sum over the shared bodies of (row i of J M^-1) . (row j of J), from 0, in ODE's order (body[0]
 /// of p first), with row i's entries held in registers; 0 where they share no body. Calls
-/// emit(j, value) for each j in turn.
+/// emit(j, value) for each j in turn. Inlined: it is called once per row and coupled joint,
+/// mostly for two to six entries, and GCC kept it out of line.
 template <typename Emit>
-void row_against_joint(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j_end,
+[[gnu::always_inline]] inline void row_against_joint(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j_end,
                        const SharedSides& shared, Emit&& emit) {
     if (shared.count == 0) {
         for (int j = q.row; j < j_end; ++j) emit(j, 0.0);

@@ -122,55 +122,67 @@ IslandScratch& thread_scratch() {
     return scratch;
 }
 
+/// What an island's solve takes from its world's state, read under the hook's lock.
+struct IslandPlan {
+    Options options;
+    bool small = false;     ///< pivoting::is_small_island: no ordering is looked up or kept
+    bool recalled = false;  ///< the warm-start memory was asked (scratch.slots says where)
+    bool warm = false;      ///< and it knew the island: scratch.start.states holds its index set
+};
+
+/// The world's options for `method`, the island's warm start (by row identity, when some row can
+/// be tight) and its remembered ordering (by structure), into scratch.start.
+IslandPlan plan_island(const dMLCP& problem, Method method, bool known_rows, bool use_memory, IslandScratch& scratch) {
+    Start& start = scratch.start;
+    start.ordering.clear();
+    std::lock_guard<std::mutex> g(hook().lock);
+    IslandPlan plan;
+    WorldState& ws = hook().worlds[problem.world];
+    plan.options = ws.settings.options;
+    plan.options.method = method;
+    plan.small = pivoting::is_small_island(problem.m, plan.options);
+    if (ws.settings.warm_start && use_memory) {
+        plan.warm = ws.memory.recall(scratch.keys, problem.step, start.states, &scratch.slots);
+        plan.recalled = true;
+    }
+    if (known_rows && !plan.small) {
+        OrderingCache::signature(problem, scratch.keys.front(), scratch.structure);
+        if (const std::vector<int>* known = ws.orderings.find(scratch.structure, problem.step)) start.ordering = *known;
+    }
+    if (!plan.warm) start.states.clear();
+    return plan;
+}
+
+/// The answer's index set and ordering kept for the next step; r is the world's last result.
+void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, bool use_memory, bool usable,
+                 IslandScratch& scratch, Result&& r) {
+    std::lock_guard<std::mutex> g(hook().lock);
+    WorldState& ws = hook().worlds[problem.world];  // looked up again: forget_world may have run meanwhile
+    if (use_memory && usable)
+        ws.memory.remember(scratch.keys, problem.step, r.states, plan.recalled ? &scratch.slots : nullptr);
+    if (known_rows && !plan.small && !r.ordering.empty() && r.ordering != scratch.start.ordering)
+        ws.orderings.store(scratch.structure, r.ordering, problem.step);
+    ws.last = std::move(r);  // no copy of its vectors per island
+}
+
 dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
     const Method method = *static_cast<const Method*>(userdata);
     IslandScratch& scratch = thread_scratch();
-    std::vector<RowKey>& keys = scratch.keys;
-    OrderingCache::Signature& structure = scratch.structure;
-    if (problem->joints != nullptr) row_keys(*problem, keys, scratch.contacts);
-    const bool known_rows = problem->joints != nullptr && !keys.empty();
+    if (problem->joints != nullptr) row_keys(*problem, scratch.keys, scratch.contacts);
+    const bool known_rows = problem->joints != nullptr && !scratch.keys.empty();
     const bool use_memory = known_rows && has_bounded_rows(*problem);
-
-    Start& start = scratch.start;
-    start.ordering.clear();
-    Options options;
-    bool warm = false, small = false, recalled = false;
-    {
-        std::lock_guard<std::mutex> g(hook().lock);
-        WorldState& ws = hook().worlds[problem->world];
-        options = ws.settings.options;
-        options.method = method;
-        // a small island's solve takes no ordering (pivoting/small_island.h): no signature, no lookup
-        small = pivoting::is_small_island(problem->m, options);
-        if (ws.settings.warm_start && use_memory) {
-            warm = ws.memory.recall(keys, problem->step, start.states, &scratch.slots);
-            recalled = true;
-        }
-        if (known_rows && !small) {
-            OrderingCache::signature(*problem, keys.front(), structure);
-            if (const std::vector<int>* known = ws.orderings.find(structure, problem->step)) start.ordering = *known;
-        }
-    }
-    if (!warm) start.states.clear();
-    const Problem q = scratch.view.of(*problem, small, start.ordering);
+    const IslandPlan plan = plan_island(*problem, method, known_rows, use_memory, scratch);
+    const Problem q = scratch.view.of(*problem, plan.small, scratch.start.ordering);
 
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
-    Result r = solve(q, options, Strided{problem->pairsbx + 1, 2}, start, scratch.workspace);
+    Result r = solve(q, plan.options, Strided{problem->pairsbx + 1, 2}, scratch.start, scratch.workspace);
 
     const dMLCPStatus status = to_ode_status(r);
     stats->pivots = r.pivoting.pivots;
     stats->tight = r.tight;
     stats->fallbacks = r.fallback == Fallback::None ? 0 : 1;
     stats->fallback = fallback_name(r);
-
-    std::lock_guard<std::mutex> g(hook().lock);
-    HookState& h = hook();
-    WorldState& ws = h.worlds[problem->world];
-    if (use_memory && status != dMLCPFailed)
-        ws.memory.remember(keys, problem->step, r.states, recalled ? &scratch.slots : nullptr);
-    if (known_rows && !small && !r.ordering.empty() && r.ordering != start.ordering)
-        ws.orderings.store(structure, r.ordering, problem->step);
-    ws.last = std::move(r);  // last use of r: no copy of its vectors per island
+    keep_island(*problem, plan, known_rows, use_memory, status != dMLCPFailed, scratch, std::move(r));
     return status;
 }
 

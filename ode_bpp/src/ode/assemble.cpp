@@ -110,6 +110,37 @@ double diagonal_entry(const dMLCP& island, const dMLCPJoint& p, int i, const Sha
     return a;
 }
 
+/// Row i of joint p against its own earlier rows, then A(i,i): emit(j, value) for j = p.row .. i.
+/// The entries as row_against_joint and diagonal_entry form them, in the same order, with row i's
+/// J M^-1 loaded once for both and J read on from row p.row down to row i.
+template <typename Emit>
+[[gnu::always_inline]] inline void own_rows(const dMLCP& island, const dMLCPJoint& p, int i, const SharedSides& own,
+                                            Emit&& emit) {
+    if (own.count == 0) {
+        for (int j = p.row; j < i; ++j) emit(j, 0.0);
+        emit(i, island.cfm[i]);
+        return;
+    }
+    const JinvMEntries m0 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, own.p_side[0], i));
+    const dReal* j0 = side_row(island.J, dMLCP_J_ROW, p, own.q_side[0], p.row);
+    if (own.count == 1) {
+        for (int j = p.row; j < i; ++j, j0 += dMLCP_J_ROW) emit(j, 0.0 + body_term(m0, j0));
+        emit(i, island.cfm[i] + body_term(m0, j0));
+        return;
+    }
+    const JinvMEntries m1 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, own.p_side[1], i));
+    const dReal* j1 = side_row(island.J, dMLCP_J_ROW, p, own.q_side[1], p.row);
+    for (int j = p.row; j < i; ++j, j0 += dMLCP_J_ROW, j1 += dMLCP_J_ROW) {
+        double a = 0.0 + body_term(m0, j0);
+        a += body_term(m1, j1);
+        emit(j, a);
+    }
+    double a = island.cfm[i];
+    a += body_term(m0, j0);
+    a += body_term(m1, j1);
+    emit(i, a);
+}
+
 /// Each joint's couplings: the earlier joints it shares a body with, increasing, and the sides
 /// they share (shared_sides). O(joints + incidences).
 void find_couplings(const dMLCP& island, AssemblyBuffers& buffers, Couplings& out) {
@@ -141,8 +172,7 @@ void assemble_joints(const dMLCP& island, const Couplings& couplings, Keep keep)
                 const dMLCPJoint& q = island.joints[couplings.joint[k]];
                 row_against_joint(island, p, i, q, q.row + q.m, couplings.sides[k], keep_row_i);
             }
-            row_against_joint(island, p, i, p, i, own, keep_row_i);
-            keep(i, i, diagonal_entry(island, p, i, own));
+            own_rows(island, p, i, own, keep_row_i);
         }
     }
 }

@@ -72,6 +72,32 @@ TEST(Validation, RowsStoredInAnotherOrderAreNamedAsTheCallerBuiltThem) {
     EXPECT_NE(validate_matrix(A).message.find("row 1:"), std::string::npos) << validate_matrix(A).message;
 }
 
+TEST(Validation, CompressedRowsFindEveryNonFiniteEntryAndPassHugeFiniteOnes) {
+    // a path of 8 rows (7 lower entries, 14 stored): each position in turn, so that the vectorized
+    // pass is checked at the start, middle and odd tail of its packets
+    const int n = 8;
+    const std::vector<double> diagonal(n, 4.0);
+    for (double bad : {kNaN, kInf, -kInf}) {
+        for (int k = 1; k < n; ++k) {
+            std::vector<linalg::LowerEntry> lower;
+            for (int i = 1; i < n; ++i) lower.push_back({i, i - 1, i == k ? bad : 0.5});
+            std::vector<double> d = diagonal;  // assign_lower takes it over
+            linalg::SymmetricRows A;
+            A.assign_lower(d, lower);
+            const ValidationResult v = validate_matrix(A);
+            EXPECT_FALSE(v.valid) << "entry " << k << " = " << bad;
+            EXPECT_NE(v.message.find("A(" + std::to_string(k) + "," + std::to_string(k - 1) + ")"), std::string::npos)
+                << v.message;
+        }
+    }
+    std::vector<linalg::LowerEntry> lower;
+    for (int i = 1; i < n; ++i) lower.push_back({i, i - 1, i % 2 ? 1e308 : -1e308});  // 0 * 1e308 is 0
+    std::vector<double> d = diagonal;
+    linalg::SymmetricRows A;
+    A.assign_lower(d, lower);
+    EXPECT_TRUE(validate_matrix(A).valid);
+}
+
 TEST(Validation, UpperTriangleIsNotRead) {
     auto p = good_problem();
     p.a(2, 5) = kNaN;  // ODE leaves the strict upper triangle unset

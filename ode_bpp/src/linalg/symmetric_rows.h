@@ -85,6 +85,8 @@ public:
     int row_end(int i) const { return rowptr_[i + 1]; }
     int col(int k) const { return col_[k]; }
     double val(int k) const { return val_[k]; }
+    /// val(0) .. val(off_diagonal_entries() - 1), contiguous.
+    const double* values() const { return val_.data(); }
 
     /// y = (Ap + shift I) x; x, y: n entries, permuted space.
     void multiply(const std::vector<double>& x, double shift, std::vector<double>& y) const;

@@ -110,23 +110,21 @@ double diagonal_entry(const dMLCP& island, const dMLCPJoint& p, int i, const Sha
     return a;
 }
 
-/// Row i of joint p against its own earlier rows, then A(i,i): emit(j, value) for j = p.row .. i.
-/// The entries as row_against_joint and diagonal_entry form them, in the same order, with row i's
-/// J M^-1 loaded once for both and J read on from row p.row down to row i.
+/// Row i of joint p against its own earlier rows, emit(j, value) for j = p.row .. i-1; returns
+/// A(i,i). The entries as row_against_joint and diagonal_entry form them, in the same order, with
+/// row i's J M^-1 loaded once for both and J read on from row p.row down to row i.
 template <typename Emit>
-[[gnu::always_inline]] inline void own_rows(const dMLCP& island, const dMLCPJoint& p, int i, const SharedSides& own,
+[[gnu::always_inline]] inline double own_rows(const dMLCP& island, const dMLCPJoint& p, int i, const SharedSides& own,
                                             Emit&& emit) {
     if (own.count == 0) {
         for (int j = p.row; j < i; ++j) emit(j, 0.0);
-        emit(i, island.cfm[i]);
-        return;
+        return island.cfm[i];
     }
     const JinvMEntries m0 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, own.p_side[0], i));
     const dReal* j0 = side_row(island.J, dMLCP_J_ROW, p, own.q_side[0], p.row);
     if (own.count == 1) {
         for (int j = p.row; j < i; ++j, j0 += dMLCP_J_ROW) emit(j, 0.0 + body_term(m0, j0));
-        emit(i, island.cfm[i] + body_term(m0, j0));
-        return;
+        return island.cfm[i] + body_term(m0, j0);
     }
     const JinvMEntries m1 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, own.p_side[1], i));
     const dReal* j1 = side_row(island.J, dMLCP_J_ROW, p, own.q_side[1], p.row);
@@ -138,7 +136,7 @@ template <typename Emit>
     double a = island.cfm[i];
     a += body_term(m0, j0);
     a += body_term(m1, j1);
-    emit(i, a);
+    return a;
 }
 
 /// Each joint's couplings: the earlier joints it shares a body with, increasing, and the sides
@@ -158,21 +156,21 @@ void find_couplings(const dMLCP& island, AssemblyBuffers& buffers, Couplings& ou
     }
 }
 
-/// Every joint's rows in turn, row by row with increasing columns: keep(i, j, a) for each lower
-/// entry (j < i: the coupled joints' rows, then the joint's own earlier rows), keep(i, i, a) for
-/// each diagonal entry.
-template <typename Keep>
-void assemble_joints(const dMLCP& island, const Couplings& couplings, Keep keep) {
+/// Every joint's rows in turn, row by row with increasing columns: keep_lower(i, j, a) for each
+/// lower entry (j < i: the coupled joints' rows, then the joint's own earlier rows), then
+/// keep_diagonal(i, a).
+template <typename KeepLower, typename KeepDiagonal>
+void assemble_joints(const dMLCP& island, const Couplings& couplings, KeepLower keep_lower, KeepDiagonal keep_diagonal) {
     for (int pj = 0; pj < island.nj; ++pj) {
         const dMLCPJoint& p = island.joints[pj];
         const SharedSides own = shared_sides(p, p);
         for (int i = p.row; i < p.row + p.m; ++i) {
-            const auto keep_row_i = [&keep, i](int j, double a) { keep(i, j, a); };
+            const auto keep_row_i = [&keep_lower, i](int j, double a) { keep_lower(i, j, a); };
             for (int k = couplings.first[pj]; k < couplings.first[pj + 1]; ++k) {
                 const dMLCPJoint& q = island.joints[couplings.joint[k]];
                 row_against_joint(island, p, i, q, q.row + q.m, couplings.sides[k], keep_row_i);
             }
-            own_rows(island, p, i, own, keep_row_i);
+            keep_diagonal(i, own_rows(island, p, i, own, keep_row_i));
         }
     }
 }
@@ -214,14 +212,12 @@ void remember_pattern(const linalg::SymmetricRows& out, const std::vector<int>& 
 void refill_values(const dMLCP& island, linalg::SymmetricRows& out, const AssemblyPattern& pattern) {
     const linalg::SymmetricRows::Values values = out.values_in_place();
     const int* slot = pattern.slots.data();
-    assemble_joints(island, pattern.couplings, [&values, &pattern, &slot](int i, int j, double a) {
-        if (j == i) {
-            values.diagonal[pattern.to_stored[i]] = a;
-            return;
-        }
+    const auto keep_lower = [&values, &slot](int, int, double a) {
         values.values[slot[0]] = values.values[slot[1]] = a;
         slot += 2;
-    });
+    };
+    const auto keep_diagonal = [&values, &pattern](int i, double a) { values.diagonal[pattern.to_stored[i]] = a; };
+    assemble_joints(island, pattern.couplings, keep_lower, keep_diagonal);
     assert(slot == pattern.slots.data() + pattern.slots.size());
 }
 
@@ -244,10 +240,10 @@ void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuff
     lower.clear();
     std::vector<double>& diagonal = buffers.diagonal;
     diagonal.resize(static_cast<std::size_t>(island.m));
-    assemble_joints(island, buffers.couplings, [&lower, &diagonal](int i, int j, double a) {
-        if (j == i) diagonal[i] = a;
-        else lower.push_back({i, j, a});  // an exact zero too: the pattern is the joints' (see assemble.h)
-    });
+    // an exact zero is kept too: the pattern is the joints' (see assemble.h)
+    const auto keep_lower = [&lower](int i, int j, double a) { lower.push_back({i, j, a}); };
+    const auto keep_diagonal = [&diagonal](int i, double a) { diagonal[i] = a; };
+    assemble_joints(island, buffers.couplings, keep_lower, keep_diagonal);
     if (order.empty()) out.assign_lower(diagonal, lower);
     else out.assign_lower(diagonal, lower, order);
     remember_pattern(out, order, buffers);

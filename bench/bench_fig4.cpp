@@ -44,12 +44,14 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
-/// One random choice of tight rows (ascending), as flags, and the kept rows.
+/// One random choice of tight rows (ascending), as flags, and the kept rows, of n rows.
 struct TightSet {
     std::vector<int> rows;
     std::vector<char> flags;
     std::vector<int> kept;
-    int first() const { return rows.front(); }
+    int n = 0;
+    /// The first tight row, n when there is none.
+    int first() const { return rows.empty() ? n : rows.front(); }
 };
 
 TightSet random_tight_set(int m, int percent, std::mt19937& rng) {
@@ -57,6 +59,7 @@ TightSet random_tight_set(int m, int percent, std::mt19937& rng) {
     for (int k = 0; k < m; ++k) indices[k] = k;
     std::shuffle(indices.begin(), indices.end(), rng);
     TightSet set;
+    set.n = m;
     set.rows.assign(indices.begin(), indices.begin() + std::max(1, m * percent / 100));
     std::sort(set.rows.begin(), set.rows.end());
     set.flags.assign(static_cast<std::size_t>(m), 0);
@@ -91,7 +94,7 @@ void figure4(benchmark::State& state, int m, int percent) {
     std::vector<double> work(static_cast<std::size_t>(m));
     MatrixXd A_FF(kept, kept);
     Eigen::LLT<MatrixXd> llt(static_cast<Eigen::Index>(kept));
-    const TightSet none{{m}, {}, {}};
+    const TightSet none{{}, {}, {}, m};  // before the first iteration: L and R hold L0
     const TightSet* previous = &none;
     std::vector<double> t_delete, t_eigen, t_refactor;
     for (auto _ : state) {

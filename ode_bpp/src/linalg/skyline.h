@@ -7,6 +7,7 @@
 // every row deletion inside the storage: deleting rows never widens the envelope (docs/maths.md).
 #pragma once
 
+#include <cassert>
 #include <cstddef>
 #include <vector>
 
@@ -35,6 +36,7 @@ struct SkylineShape {
     /// columns (restore them with SkylineMatrix::copy_rows_from). O(1) from first_column (the
     /// factorization asks it for every column it updates), else O(log n).
     int first_column_holding(int r) const {
+        assert(r >= 0 && r < n);
         return first_column.empty() ? search_first_column(r) : first_column[static_cast<std::size_t>(r)];
     }
     /// True when sky is non-decreasing with k <= sky[k] <= n-1 and every column fits before

@@ -59,8 +59,6 @@ double body_term(const JinvMEntries& m, const dReal* j) {
     return sum;
 }
 
-double body_term(const dReal* jinvm, const dReal* j) { return body_term(entries_of(jinvm), j); }
-
 SharedSides shared_sides(const dMLCPJoint& p, const dMLCPJoint& q) {
     SharedSides shared;
     for (int side = 0; side < 2; ++side) {
@@ -74,11 +72,29 @@ SharedSides shared_sides(const dMLCPJoint& p, const dMLCPJoint& q) {
     return shared;
 }
 
-/// Row i of joint p against the rows j of joint q (q == p or earlier) before j_end: the entries
-/// sum over the shared bodies of (row i of J M^-1) . (row j of J), from 0, in ODE's order (body[0]
-/// of p first), with row i's entries held in registers; 0 where they share no body. Calls
-/// emit(j, value) for each j in turn. Inlined: it is called once per row and coupled joint,
-/// mostly for two to six entries, and GCC kept it out of line.
+/// Row i's J M^-1 (m0, m1) against consecutive rows of J (from j0, j1) over `count` shared bodies,
+/// in shared_sides' order (body[0] of p first, as ODE sums): emit(j, A(i,j)) for j in
+/// [j_begin, j_end), each summed from 0; j0 and j1 move on past those rows (m1 and j1 are not
+/// read when count is 1).
+template <typename Emit>
+[[gnu::always_inline]] inline void emit_entries(int count, const JinvMEntries& m0, const JinvMEntries& m1, const dReal*& j0,
+                                                const dReal*& j1, int j_begin, int j_end, Emit&& emit) {
+    if (count == 1) {  // most pairs share one body
+        for (int j = j_begin; j < j_end; ++j, j0 += dMLCP_J_ROW) emit(j, 0.0 + body_term(m0, j0));
+        return;
+    }
+    for (int j = j_begin; j < j_end; ++j, j0 += dMLCP_J_ROW, j1 += dMLCP_J_ROW) {
+        double a = 0.0 + body_term(m0, j0);
+        a += body_term(m1, j1);
+        emit(j, a);
+    }
+}
+
+/// Row i of joint p against the rows j of an earlier joint q before j_end: the entries
+/// sum over the shared bodies of (row i of J M^-1) . (row j of J) (emit_entries), with row i's
+/// entries held in registers; 0 where they share no body. Calls emit(j, value) for each j in
+/// turn. Inlined: it is called once per row and coupled joint, mostly for two to six entries,
+/// and GCC kept it out of line.
 template <typename Emit>
 [[gnu::always_inline]] inline void row_against_joint(const dMLCP& island, const dMLCPJoint& p, int i, const dMLCPJoint& q, int j_end,
                        const SharedSides& shared, Emit&& emit) {
@@ -88,31 +104,18 @@ template <typename Emit>
     }
     const JinvMEntries m0 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[0], i));
     const dReal* j0 = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[0], q.row);
-    if (shared.count == 1) {  // most pairs share one body
-        for (int j = q.row; j < j_end; ++j, j0 += dMLCP_J_ROW) emit(j, 0.0 + body_term(m0, j0));
+    if (shared.count == 1) {
+        emit_entries(1, m0, m0, j0, j0, q.row, j_end, emit);
         return;
     }
     const JinvMEntries m1 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[1], i));
     const dReal* j1 = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[1], q.row);
-    for (int j = q.row; j < j_end; ++j, j0 += dMLCP_J_ROW, j1 += dMLCP_J_ROW) {
-        double a = 0.0 + body_term(m0, j0);
-        a += body_term(m1, j1);
-        emit(j, a);
-    }
-}
-
-/// A(i,i): cfm_i, then each of p's bodies (body[0] first), as ODE adds them onto its diagonal.
-double diagonal_entry(const dMLCP& island, const dMLCPJoint& p, int i, const SharedSides& own) {
-    double a = island.cfm[i];
-    for (int k = 0; k < own.count; ++k)
-        a += body_term(side_row(island.JinvM, dMLCP_JINVM_ROW, p, own.p_side[k], i),
-                       side_row(island.J, dMLCP_J_ROW, p, own.q_side[k], i));
-    return a;
+    emit_entries(2, m0, m1, j0, j1, q.row, j_end, emit);
 }
 
 /// Row i of joint p against its own earlier rows, emit(j, value) for j = p.row .. i-1; returns
-/// A(i,i). The entries as row_against_joint and diagonal_entry form them, in the same order, with
-/// row i's J M^-1 loaded once for both and J read on from row p.row down to row i.
+/// A(i,i): cfm_i, then each of p's bodies (body[0] first), as ODE adds them onto its diagonal.
+/// Row i's J M^-1 is loaded once for both, and J read on from row p.row down to row i.
 template <typename Emit>
 [[gnu::always_inline]] inline double own_rows(const dMLCP& island, const dMLCPJoint& p, int i, const SharedSides& own,
                                             Emit&& emit) {
@@ -123,16 +126,12 @@ template <typename Emit>
     const JinvMEntries m0 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, own.p_side[0], i));
     const dReal* j0 = side_row(island.J, dMLCP_J_ROW, p, own.q_side[0], p.row);
     if (own.count == 1) {
-        for (int j = p.row; j < i; ++j, j0 += dMLCP_J_ROW) emit(j, 0.0 + body_term(m0, j0));
+        emit_entries(1, m0, m0, j0, j0, p.row, i, emit);
         return island.cfm[i] + body_term(m0, j0);
     }
     const JinvMEntries m1 = entries_of(side_row(island.JinvM, dMLCP_JINVM_ROW, p, own.p_side[1], i));
     const dReal* j1 = side_row(island.J, dMLCP_J_ROW, p, own.q_side[1], p.row);
-    for (int j = p.row; j < i; ++j, j0 += dMLCP_J_ROW, j1 += dMLCP_J_ROW) {
-        double a = 0.0 + body_term(m0, j0);
-        a += body_term(m1, j1);
-        emit(j, a);
-    }
+    emit_entries(2, m0, m1, j0, j1, p.row, i, emit);
     double a = island.cfm[i];
     a += body_term(m0, j0);
     a += body_term(m1, j1);
@@ -254,27 +253,13 @@ void assemble_dense_lower(const dMLCP& island, double* A, int lda, AssemblyBuffe
         double* row = A + static_cast<std::ptrdiff_t>(i) * lda;
         std::fill(row, row + i, 0.0);
     }
-    // Block (p, q) row by row, each entry summed as row_against_joint sums it (from 0, the shared
-    // bodies in shared_sides' order), with the pointers set once per row and no call per entry;
-    // the diagonal block stops at the diagonal, which diagonal_entry gives.
+    // the entries as assemble_rows forms them (row_against_joint, own_rows), written in place
     const auto block = [&island, A, lda](const dMLCPJoint& p, const dMLCPJoint& q, const SharedSides& shared, bool own) {
         for (int i = p.row; i < p.row + p.m; ++i) {
             double* out = A + static_cast<std::ptrdiff_t>(i) * lda;
-            const int j_end = own ? i : q.row + q.m;
-            const dReal* m0 = side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[0], i);
-            const dReal* j0 = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[0], q.row);
-            if (shared.count == 1) {
-                for (int j = q.row; j < j_end; ++j, j0 += dMLCP_J_ROW) out[j] = 0.0 + body_term(m0, j0);
-            } else if (shared.count == 2) {
-                const dReal* m1 = side_row(island.JinvM, dMLCP_JINVM_ROW, p, shared.p_side[1], i);
-                const dReal* j1 = side_row(island.J, dMLCP_J_ROW, q, shared.q_side[1], q.row);
-                for (int j = q.row; j < j_end; ++j, j0 += dMLCP_J_ROW, j1 += dMLCP_J_ROW) {
-                    double a = 0.0 + body_term(m0, j0);
-                    a += body_term(m1, j1);
-                    out[j] = a;
-                }
-            }  // no shared body: the entries stay 0
-            if (own) out[i] = diagonal_entry(island, p, i, shared);
+            const auto write = [out](int j, double a) { out[j] = a; };
+            if (own) out[i] = own_rows(island, p, i, shared, write);
+            else row_against_joint(island, p, i, q, q.row + q.m, shared, write);
         }
     };
     // the earlier joints that share a body, by a scan of all pairs (O(nj^2) <= O(m^2), the cost

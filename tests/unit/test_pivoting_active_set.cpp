@@ -68,7 +68,7 @@ TEST(PivotingActiveSet, TakesIslandsOfThousandsOfRows) {
     std::vector<double> reference(static_cast<std::size_t>(p.n)), x(static_cast<std::size_t>(p.n));
     const Result plain = solve(p, o, reference.data());
     ASSERT_EQ(plain.status, Status::Converged) << plain.message;
-    o.tuning.rescue_after = 1;
+    o.tuning.rescue_after = o.tuning.rescue_after_moved_bounds = 1;
     Start wrong;  // every bounded row at its upper bound: one plain step does not finish from there
     wrong.states.assign(static_cast<std::size_t>(p.n), RowState::AtHi);
     std::fill(wrong.states.begin(), wrong.states.begin() + p.nub, RowState::Free);
@@ -77,6 +77,38 @@ TEST(PivotingActiveSet, TakesIslandsOfThousandsOfRows) {
     EXPECT_GT(r.pivoting.update_steps, 0) << "the active set did not run";
     EXPECT_EQ(r.fallback, Fallback::None);
     EXPECT_LT(problems::max_abs_diff(x, reference), 1e-6 * (1 + problems::inf_norm(reference)));
+}
+
+// Frozen friction's second fixed-bound solve from a warm start whose friction states miss the
+// bounds the frictionless normals give (the state of every friction row flipped): the active set
+// takes over after Tuning::rescue_after_moved_bounds plain steps, where with rescue_after's the
+// block steps alone finish; both reach the cold answer, the only one of this SPD problem.
+TEST(PivotingActiveSet, TakesFrozenFrictionsMovedBoundsAfterFewerPlainSteps) {
+    const auto owned = problems::chain_mlcp(30, 20);
+    const Problem p = owned.view();
+    Options o;
+    o.dantzig_fallback = false;
+    std::vector<double> reference(static_cast<std::size_t>(p.n)), x(static_cast<std::size_t>(p.n));
+    const Result cold = solve(p, o, reference.data());
+    ASSERT_EQ(cold.status, Status::Converged) << cold.message;
+    Start flipped{cold.states, {}};
+    int friction_rows = 0;
+    for (int i = 0; i < p.n; ++i) {
+        if (p.findex == nullptr || p.findex[i] < 0) continue;
+        RowState& s = flipped.states[static_cast<std::size_t>(i)];
+        s = s == RowState::Free ? RowState::AtHi : RowState::Free;
+        ++friction_rows;
+    }
+    ASSERT_GT(friction_rows, 0);
+    const auto solve_flipped = [&](int moved_bounds_steps) {
+        o.tuning.rescue_after_moved_bounds = moved_bounds_steps;
+        const Result r = solve(p, o, x.data(), flipped);
+        EXPECT_EQ(r.status, Status::Converged) << r.message;
+        EXPECT_LT(problems::max_abs_diff(x, reference), 1e-6 * (1 + problems::inf_norm(reference)));
+        return r;
+    };
+    EXPECT_EQ(solve_flipped(o.tuning.rescue_after).pivoting.update_steps, 0) << "block steps alone finish";
+    EXPECT_GT(solve_flipped(1).pivoting.update_steps, 0) << "the active set did not take over";
 }
 
 // With one plain step before it, the active set answers most of the problem on random boxed

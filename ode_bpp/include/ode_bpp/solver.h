@@ -126,10 +126,18 @@ struct Tuning {
     /// Block steps without a fall in the number of infeasible rows before Murty's single pivot.
     int murty_after = 3;
     /// Steps of the plain attempt of a fixed-bound solve. If it has not converged by then, the
-    /// solve starts again from its start through a regularization continuation (A + delta I,
-    /// delta falling adaptively from 1e-4 max_i A_ii to the problem's own, pivoting/regularization.h),
-    /// with the rest of the budget; if that gives up, the plain attempt resumes. 0: no rescue.
+    /// active-set method below goes on from its least infeasible iterate; where that does not
+    /// finish, the solve starts again from its start through a regularization continuation
+    /// (A + delta I, delta falling adaptively from 1e-4 max_i A_ii to the problem's own,
+    /// pivoting/regularization.h), with the rest of the budget; if that gives up, the plain
+    /// attempt resumes. 0: none of this (the plain attempt has the whole budget).
     int rescue_after = 8;
+    /// The same for Frozen friction's second fixed-bound solve from a warm start (Start::states,
+    /// as inside ODE): its friction rows have just been bounded anew by mu times the frictionless
+    /// normals, which the previous step's friction states mostly miss, and block steps then flip
+    /// tens of nearly redundant friction rows back and forth where the active set settles them
+    /// (docs/tuning.md). Used only while rescue_after > 0; at least 1.
+    int rescue_after_moved_bounds = 2;
     /// Where that plain attempt does not converge, an active-set method on the box QP from its
     /// least infeasible iterate: it terminates finitely, the rows with wrong-sign multipliers
     /// leaving the tight set together and a ratio test keeping x within its bounds, each row

@@ -181,7 +181,8 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     std::vector<RowState> states = permuted_start(problem, start, q.perm);
     std::vector<double> xp;
     PivotCounters counters;
-    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.contents().fixed_bound);
+    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.contents().fixed_bound,
+                           !start.states.empty());
     PolicyOutcome outcome;
     std::string note;
     if (options.friction == FrictionMode::Consistent) {

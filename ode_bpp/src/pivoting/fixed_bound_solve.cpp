@@ -9,12 +9,14 @@
 namespace ode_bpp::pivoting {
 
 FixedBoundSolver::FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,
-                                   PivotCounters& counters, FixedBoundBuffers& buffers)
-    : lcp_(lcp), solver_(solver), options_(options), counters_(counters), buffers_(buffers), regularization_(max_diag) {}
+                                   PivotCounters& counters, FixedBoundBuffers& buffers, bool warm)
+    : lcp_(lcp), solver_(solver), options_(options), counters_(counters), buffers_(buffers), regularization_(max_diag),
+      warm_(warm) {}
 
 FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<double>& x, int budget,
-                                     AnswerUse use) {
+                                     AnswerUse use, StartBounds bounds) {
     use_ = use;
+    start_bounds_ = bounds;
     start_ = states;
     if (!continuation_done_) run_continuation(states, x, budget);
     for (;;) {
@@ -28,7 +30,7 @@ FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<
     }
 }
 
-/// The plain loop gets Tuning::rescue_after steps; if it has not converged by then, the
+/// The plain loop gets plain_steps() steps; if it has not converged by then, the
 /// active-set method on an incremental factor (active_set.h) goes on from its least infeasible
 /// iterate, with a budget of its own; where it does not finish, the rescue starts afresh
 /// from the warm start with the rest of the budget, and should it give up, the plain loop
@@ -36,8 +38,8 @@ FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<
 LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vector<double>& x, int budget) {
     int first = counters_.pivots;
     const auto left = [&] { return budget - (counters_.pivots - first); };
-    const bool rescue_allowed = options_.tuning.rescue_after > 0;
-    LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, options_.tuning.rescue_after) : budget),
+    const bool rescue_allowed = plain_steps() > 0;
+    LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, plain_steps()) : budget),
                                              states, x, counters_, buffers_.loop);
     if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
     if (options_.tuning.active_set && active_set_applies(lcp_)) {
@@ -126,6 +128,12 @@ bool FixedBoundSolver::prepare(double shift) {
     if (!solver_.prepare(shift)) return false;
     prepared_ = shift;
     return true;
+}
+
+int FixedBoundSolver::plain_steps() const {
+    const Tuning& t = options_.tuning;
+    if (t.rescue_after <= 0) return 0;
+    return warm_ && start_bounds_ == StartBounds::Moved ? std::max(1, t.rescue_after_moved_bounds) : t.rescue_after;
 }
 
 PivotSettings FixedBoundSolver::settings(int budget) const {

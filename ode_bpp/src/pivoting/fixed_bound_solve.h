@@ -1,7 +1,8 @@
 // One fixed-bound solve of a BPP method: the boxed LCP with its bounds as they stand (paper
 // Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
 // decides: the plain attempt from the warm start; where that does not converge within
-// Tuning::rescue_after steps, the active-set method on an incremental factor kept on its envelope
+// Tuning::rescue_after steps (rescue_after_moved_bounds for a warm start whose bounds have just
+// moved, StartBounds), the active-set method on an incremental factor kept on its envelope
 // (active_set.h, which terminates finitely), then the rescue continuation, then the plain loop
 // again where the rescue gives up; and all of it again one rung up the breakdown ladder after a
 // Cholesky breakdown.
@@ -37,18 +38,24 @@ struct FixedBoundBuffers {
     ActiveSetWorkspace active_set;
 };
 
+/// What the index set a fixed-bound solve starts from answered: the bounds as they stand, or
+/// bounds that have moved since (Frozen friction's second solve: friction rows bounded anew by
+/// mu times the frictionless normals, while the warm start holds the previous step's states).
+enum class StartBounds { Same, Moved };
+
 class FixedBoundSolver {
 public:
     /// lcp: the problem (its shift is set here); solver: a factor strategy on lcp.A; options:
-    /// murty_after, tolerance, record_steps, rescue_after, continuation_stages; max_diag:
-    /// max_i A_ii; counters: accumulated over every solve; buffers: the stages' buffers.
+    /// murty_after, tolerance, record_steps, rescue_after, rescue_after_moved_bounds,
+    /// continuation_stages; max_diag: max_i A_ii; counters: accumulated over every solve;
+    /// buffers: the stages' buffers; warm: the caller's solve started from Start::states.
     FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,
-                     PivotCounters& counters, FixedBoundBuffers& buffers);
+                     PivotCounters& counters, FixedBoundBuffers& buffers, bool warm = false);
 
     /// Solves from `states` (in: the warm start; out: the final index set) within `budget` pivot
-    /// steps of the target problem. x: out, n entries.
+    /// steps of the target problem. x: out, n entries. bounds: what `states` answered.
     FixedOutcome solve(std::vector<RowState>& states, std::vector<double>& x, int budget,
-                       AnswerUse use = AnswerUse::Final);
+                       AnswerUse use = AnswerUse::Final, StartBounds bounds = StartBounds::Same);
 
     /// delta of the problem every answer solves: 0 unless a breakdown raised it.
     double shift() const { return regularization_.target(); }
@@ -61,6 +68,8 @@ private:
     /// Factors A + shift I unless the solver already holds that factor; false on breakdown.
     bool prepare(double shift);
     PivotSettings settings(int budget) const;
+    /// Steps of the plain attempt before the active set and the rescue; 0: neither.
+    int plain_steps() const;
 
     BoxedLcp& lcp_;
     FreeSolver& solver_;
@@ -70,6 +79,8 @@ private:
     Regularization regularization_;
     std::optional<double> prepared_;       ///< the shift the solver holds a factor of
     AnswerUse use_ = AnswerUse::Final;     ///< of the solve in progress
+    StartBounds start_bounds_ = StartBounds::Same;  ///< of the solve in progress
+    const bool warm_;                      ///< the caller's solve started from Start::states
     bool continuation_done_ = false;       ///< the up-front continuation runs before the first solve only
     std::vector<RowState> start_, entry_states_;  ///< warm start of a solve; states entering a rescue
     std::vector<double> entry_x_;

@@ -26,7 +26,7 @@ PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const Frictio
     if (frictionless == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
     friction.set_bounds(lcp, friction.targets(x));
     for (int i : friction.rows) states[i] = requested[i];
-    const FixedOutcome frozen = fixed.solve(states, x, budget);
+    const FixedOutcome frozen = fixed.solve(states, x, budget, AnswerUse::Final, StartBounds::Moved);
     if (frozen == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
     return frictionless == FixedOutcome::BudgetSpent ? PolicyOutcome::BudgetSpent : outcome(frozen);
 }

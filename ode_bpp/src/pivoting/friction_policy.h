@@ -27,7 +27,8 @@ enum class PolicyOutcome {
 
 /// Dantzig's semantics (ODE lcp.cpp): every friction row held at 0 while the others are solved,
 /// then bounds +-|mu x_normal| from those normals, kept fixed for a second solve that starts the
-/// friction rows from their requested states. Without friction rows, one solve.
+/// friction rows from their requested states (StartBounds::Moved: from a warm start, the active
+/// set takes it over sooner). Without friction rows, one solve.
 PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const FrictionSet& friction, int budget,
                            std::vector<RowState>& states, std::vector<double>& x);
 

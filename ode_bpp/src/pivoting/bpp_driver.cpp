@@ -181,12 +181,12 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     std::vector<RowState> states = permuted_start(problem, start, q.perm);
     std::vector<double> xp;
     PivotCounters counters;
-    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.contents().fixed_bound,
-                           !start.states.empty());
+    const bool warm = !start.states.empty();
+    FixedBoundSolver fixed(q.lcp, *q.solver, options, q.A->max_diag(), counters, workspace.contents().fixed_bound, warm);
     PolicyOutcome outcome;
     std::string note;
     if (options.friction == FrictionMode::Consistent) {
-        ConsistentFriction policy(fixed, q.lcp, q.friction, options, !start.states.empty(), counters);
+        ConsistentFriction policy(fixed, q.lcp, q.friction, options, warm, counters);
         outcome = policy.solve(states, xp);
         note = policy.note();
     } else {

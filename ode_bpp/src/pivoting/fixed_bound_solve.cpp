@@ -38,8 +38,9 @@ FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<
 LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vector<double>& x, int budget) {
     int first = counters_.pivots;
     const auto left = [&] { return budget - (counters_.pivots - first); };
-    const bool rescue_allowed = plain_steps() > 0;
-    LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, plain_steps()) : budget),
+    const int plain = plain_steps();
+    const bool rescue_allowed = plain > 0;
+    LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, plain) : budget),
                                              states, x, counters_, buffers_.loop);
     if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
     if (options_.tuning.active_set && active_set_applies(lcp_)) {

@@ -50,7 +50,7 @@ public:
     /// continuation_stages; max_diag: max_i A_ii; counters: accumulated over every solve;
     /// buffers: the stages' buffers; warm: the caller's solve started from Start::states.
     FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,
-                     PivotCounters& counters, FixedBoundBuffers& buffers, bool warm = false);
+                     PivotCounters& counters, FixedBoundBuffers& buffers, bool warm);
 
     /// Solves from `states` (in: the warm start; out: the final index set) within `budget` pivot
     /// steps of the target problem. x: out, n entries. bounds: what `states` answered.

@@ -195,6 +195,31 @@ TEST(FrictionLcp, SparseFormIsTheDenseForm) {
     EXPECT_NE(why.find("unbounded"), std::string::npos) << why;
 }
 
+/// The Lemke stage routes by has_sparse_form before building (friction_policy.cpp), so it must
+/// say yes exactly where build_sparse takes the problem: islands with and without always-free rows
+/// (nub) and free rows beyond them.
+TEST(FrictionLcp, HasSparseFormExactlyWhereBuildSparseTakesTheProblem) {
+    for (const int nub : {0, 3}) {
+        for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+            const auto p = problems::random_boxed_mlcp(40, nub, 8, 1e4, seed);
+            DriverLcp s(p);
+            std::string why;
+            const bool taken = FrictionLcp::build_sparse(s.lcp, s.friction.view(), why).has_value();
+            EXPECT_EQ(FrictionLcp::has_sparse_form(s.lcp, s.friction.view()), taken) << "nub " << nub << ", seed " << seed << ": " << why;
+            EXPECT_EQ(taken, nub == 0) << why;
+            // a row beyond nub with both bounds infinite is unbounded too
+            if (nub == 0 && s.friction.rows.size() < static_cast<std::size_t>(s.lcp.n())) {
+                int free_row = 0;
+                while (std::find(s.friction.rows.begin(), s.friction.rows.end(), free_row) != s.friction.rows.end()) ++free_row;
+                s.lcp.lo[free_row] = -INFINITY;
+                s.lcp.hi[free_row] = INFINITY;
+                EXPECT_FALSE(FrictionLcp::has_sparse_form(s.lcp, s.friction.view()));
+                EXPECT_FALSE(FrictionLcp::build_sparse(s.lcp, s.friction.view(), why).has_value());
+            }
+        }
+    }
+}
+
 TEST(FrictionLcp, TheGuessFromAnAnswerIsItsBasis) {
     const auto p = problems::random_boxed_mlcp(60, 0, 12, 1e3, 5);
     DriverLcp s(p);

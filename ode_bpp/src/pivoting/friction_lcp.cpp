@@ -50,6 +50,14 @@ std::optional<FrictionLcp> FrictionLcp::build_sparse(const BoxedLcp& lcp, const 
     return f;
 }
 
+bool FrictionLcp::has_sparse_form(const BoxedLcp& lcp, const FrictionRows& friction) {
+    std::vector<char> is_friction(static_cast<std::size_t>(lcp.n()), 0);
+    for (int i : friction.rows) is_friction[i] = 1;
+    for (int i = 0; i < lcp.n(); ++i)
+        if (!is_friction[i] && (lcp.always_free[i] || (lcp.lo[i] == -INFINITY && lcp.hi[i] == INFINITY))) return false;
+    return true;
+}
+
 bool FrictionLcp::classify(const BoxedLcp& lcp, const FrictionRows& friction, std::string& why) {
     const int n = lcp.n();
     rows_.assign(static_cast<std::size_t>(n), Row{});

@@ -51,6 +51,10 @@ public:
     /// the reason in why, where build() would, or when the problem has unbounded rows.
     static std::optional<FrictionLcp> build_sparse(const BoxedLcp& lcp, const FrictionRows& friction, std::string& why);
 
+    /// True when no row but the friction rows is unbounded (always free, or lo = -inf and
+    /// hi = inf): the problems build_sparse takes, as far as their rows' kinds decide. O(n).
+    static bool has_sparse_form(const BoxedLcp& lcp, const FrictionRows& friction);
+
     /// The LCP, balanced by a positive diagonal D (M = D M0 D, q = D q0, z0 = D z).
     const Eigen::MatrixXd& M() const { return M_; }
     const Eigen::SparseMatrix<double>& sparse_M() const { return sparse_M_; }

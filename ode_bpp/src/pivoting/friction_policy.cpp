@@ -124,11 +124,15 @@ ConsistentFriction::Stage ConsistentFriction::lemke(std::vector<RowState>& state
     if (lemke_tried_ || !options_.tuning.lemke_friction) return Stage::Unfinished;
     lemke_tried_ = true;
     const int variables = lemke_variables_at_most();
-    const bool dense = lcp_.n() <= tuning::kLemkeMaxRows && variables <= tuning::kLemkeMaxVariables;
-    if (!dense && variables > tuning::kSparseLemkeMaxVariables) {
+    const bool fits_dense = lcp_.n() <= tuning::kLemkeMaxRows && variables <= tuning::kLemkeMaxVariables;
+    if (!fits_dense && variables > tuning::kSparseLemkeMaxVariables) {
         note_ = "Lemke stage skipped: the island is too large even for the sparse Lemke stage";
         return Stage::Unfinished;
     }
+    // the sparse stage wherever it applies from kSparseLemkeFromVariables on: it forms no dense M
+    // and pays one sparse solve per pivot (docs/tuning.md)
+    const bool dense = fits_dense && (variables < tuning::kSparseLemkeFromVariables ||
+                                      !FrictionLcp::has_sparse_form(lcp_, friction_.view()));
     std::string why;
     const std::optional<FrictionLcp> lcp =
         dense ? FrictionLcp::build(lcp_, friction_.view(), why) : FrictionLcp::build_sparse(lcp_, friction_.view(), why);

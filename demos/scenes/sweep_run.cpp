@@ -243,6 +243,7 @@ void configure_solver(SceneWorld& w, const RunSpec& spec) {
     if (spec.method == "quickstep") dWorldSetQuickStepNumIterations(w.world(), spec.iterations);
     WorldSettings settings;
     settings.options = spec.options;
+    settings.options.record_steps = false;  // as the hook's own defaults: no one here reads |T| per step
     settings.options.pgs_iterations = spec.iterations;
     settings.warm_start = spec.warm_start;
     set_world_settings(w.world(), settings);

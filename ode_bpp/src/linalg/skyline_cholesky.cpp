@@ -109,10 +109,11 @@ template <int M>
 }
 
 /// Column k -= the group's columns: rows below the shortest member take the members that
-/// still reach them (the lengths are non-decreasing). On x86-64 also compiled for AVX2 and chosen
-/// by the CPU at load time (function multi-versioning): four rows per instruction instead of
-/// two, each row's products and sums in the same order and without fused multiply-adds, so both
-/// versions give the same bits (parkour's factorization: 0.3 times faster, docs/benchmarks.md).
+/// still reach them (the lengths are non-decreasing). On x86-64 also compiled for AVX2 and
+/// chosen by the CPU at load time (function multi-versioning): four rows per instruction
+/// instead of two, each row's products and sums in the same order and without fused
+/// multiply-adds, so both versions give the same bits (with AVX2, parkour's islands factor 1.3-1.5
+/// times as fast: docs/benchmarks.md).
 KERNEL_FOR_AVX2_TOO
 void subtract_group(double* target, SourceGroup& g) {
     int from = 0;

@@ -1,4 +1,5 @@
 #include "linalg/skyline_cholesky.h"
+#include "linalg/kernel_clones.h"
 
 #include <Eigen/Core>
 
@@ -52,12 +53,6 @@ void embed_removed(SkylineMatrix& L, int k0, int k1, const std::vector<char>& re
     }
 }
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define KERNEL_FOR_AVX2_TOO __attribute__((target_clones("avx2", "default")))
-#else
-#define KERNEL_FOR_AVX2_TOO
-#endif
-
 /// Source columns shorter than this reach column k one at a time, in a plain loop: collecting
 /// them into groups costs more than it saves (forwarder: 11 % more instructions), as did Eigen's
 /// vectorized form, whose set-up outweighed the arithmetic (callgrind, a 34-row buggy island's
@@ -110,10 +105,8 @@ template <int M>
 
 /// Column k -= the group's columns: rows below the shortest member take the members that
 /// still reach them (the lengths are non-decreasing). On x86-64 also compiled for AVX2 and
-/// chosen by the CPU at load time (function multi-versioning): four rows per instruction
-/// instead of two, each row's products and sums in the same order and without fused
-/// multiply-adds, so both versions give the same bits (with AVX2, parkour's islands factor 1.3-1.5
-/// times as fast: docs/benchmarks.md).
+/// chosen by the CPU at load time (kernel_clones.h): four rows per instruction instead of two,
+/// the same bits (with AVX2, parkour's islands factor 1.3-1.5 times as fast: docs/benchmarks.md).
 KERNEL_FOR_AVX2_TOO
 void subtract_group(double* target, SourceGroup& g) {
     int from = 0;

@@ -1,4 +1,5 @@
 #include "linalg/skyline_solve.h"
+#include "linalg/kernel_clones.h"
 
 #include <Eigen/Core>
 
@@ -6,17 +7,21 @@ namespace ode_bpp::linalg {
 
 namespace {
 
-using Segment = Eigen::Map<Eigen::VectorXd>;
 using ConstSegment = Eigen::Map<const Eigen::VectorXd>;
 
 /// L y = rhs, column by column: y_k = rhs_k / L(k,k), rhs(k+1:sky[k]) -= y_k L(k+1:sky[k], k).
+/// On x86-64 also compiled for AVX2 and chosen by the CPU at load time (kernel_clones.h): the
+/// same operations per entry, the same bits.
+KERNEL_FOR_AVX2_TOO
 void forward_substitution(const SkylineMatrix& L, double* x) {
     for (int k = 0; k < L.n(); ++k) {
         const double* column = L.column(k);
         const double y_k = x[k] / column[0];
         x[k] = y_k;
         const int below = L.sky(k) - k;
-        if (y_k != 0.0 && below > 0) Segment(x + k + 1, below).noalias() -= y_k * ConstSegment(column + 1, below);
+        if (y_k == 0.0) continue;
+        double* rhs = x + k + 1;
+        for (int r = 0; r < below; ++r) rhs[r] -= y_k * column[1 + r];
     }
 }
 

@@ -18,6 +18,13 @@ Eigen::MatrixXd dense(const linalg::SymmetricRows& A, double shift) {
     return D;
 }
 
+/// Row i is unbounded before the friction rows are classified: always free, or both bounds
+/// infinite. classify and has_sparse_form share this rule, so the route the Lemke stage takes
+/// and what build_sparse accepts cannot drift apart.
+bool is_unbounded_row(const BoxedLcp& lcp, int i) {
+    return lcp.always_free[i] || (lcp.lo[i] == -INFINITY && lcp.hi[i] == INFINITY);
+}
+
 }  // namespace
 
 std::optional<FrictionLcp> FrictionLcp::build(const BoxedLcp& lcp, const FrictionRows& friction, std::string& why) {
@@ -54,7 +61,7 @@ bool FrictionLcp::has_sparse_form(const BoxedLcp& lcp, const FrictionRows& frict
     std::vector<char> is_friction(static_cast<std::size_t>(lcp.n()), 0);
     for (int i : friction.rows) is_friction[i] = 1;
     for (int i = 0; i < lcp.n(); ++i)
-        if (!is_friction[i] && (lcp.always_free[i] || (lcp.lo[i] == -INFINITY && lcp.hi[i] == INFINITY))) return false;
+        if (!is_friction[i] && is_unbounded_row(lcp, i)) return false;
     return true;
 }
 
@@ -64,7 +71,7 @@ bool FrictionLcp::classify(const BoxedLcp& lcp, const FrictionRows& friction, st
     for (int i = 0; i < n; ++i) {
         Row& r = rows_[i];
         const double lo = lcp.lo[i], hi = lcp.hi[i];
-        if (lcp.always_free[i] || (lo == -INFINITY && hi == INFINITY)) r.kind = Kind::Unbounded;
+        if (is_unbounded_row(lcp, i)) r.kind = Kind::Unbounded;
         else if (lo == hi) r = Row{Kind::Known, lo};
         else if (hi == INFINITY) r = Row{Kind::Lower, lo};
         else if (lo == -INFINITY) r = Row{Kind::Upper, hi};

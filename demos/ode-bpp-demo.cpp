@@ -540,8 +540,7 @@ RunResult run_scene(const std::string& name, const RunOptions& opt) {
     std::unique_ptr<Scene> scene = make_scene(name);
     run.paper = scene->paper_table_two();
     SceneWorld w(opt.params);
-    ode_bpp::WorldSettings settings;
-    settings.options.record_steps = false;  // as the hook's own defaults: no one here reads |T| per step
+    ode_bpp::WorldSettings settings = ode_bpp::world_settings(w.world());  // the hook's defaults
     settings.options.friction = opt.friction;
     if (opt.max_pivots) settings.options.max_pivots = *opt.max_pivots;
     ode_bpp::set_world_settings(w.world(), settings);

@@ -20,6 +20,7 @@ import subprocess
 import sys
 from collections import defaultdict
 
+import contact_report
 import world_report
 
 SCENES = ["crane", "winch", "parkour", "offshore", "forklift", "forwarder"]
@@ -772,6 +773,7 @@ def main():
     section(body, failures, "factor error target", factor_target, body, bench, missed)
     world = []
     section(world, failures, "sparse world step", world_report.section, world, out_dir, bench, missed, failures)
+    section(world, failures, "hard contact", contact_report.section, world, out_dir, bench, missed, failures)
     body.append("### Missed targets\n")
     body.extend([f"- {m}" for m in missed] or ["- none"])
     body.append("")

@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ode_bpp/io.h"
 #include "ode_bpp/residuals.h"
 #include "ode_bpp/solver.h"
 #include "problems/generators.h"
 #include "problems/named.h"
 #include "problems/vectors.h"
 #include "problems/oracle.h"
+#include "test_io_support.h"
 
 namespace ode_bpp {
 namespace {
@@ -152,6 +154,25 @@ TEST(SolverFriction, LemkeStageFinishesWhereTheLinkedSolveRunsOut) {
         EXPECT_LE(res.scaled_natural, 1e-8) << to_string(m);
         EXPECT_LE(res.friction, 1e-9 * (1 + *std::max_element(x.begin(), x.end()))) << to_string(m);
     }
+}
+
+// A cannon island (tests/data/captured/README.md): the sparse Lemke stage's path passes a nearly
+// singular basis and ends at an answer that misses the LCP by more than its tolerance. Taken as
+// the start of the certifying linked solve, it finishes; without it the outer rounds stall at a
+// relative residual of 1.5e-8.
+TEST(SolverFriction, LinkedSolveCertifiesAnInaccurateLemkeAnswer) {
+    const ReadResult read =
+        read_mlcp((io_test::data_dir() / "captured" / "cannon-consistent-inaccurate-lemke-291.mlcp").string());
+    ASSERT_TRUE(read.ok) << read.error;
+    Options o;
+    o.friction = FrictionMode::Consistent;
+    o.dantzig_fallback = false;
+    std::vector<double> x(static_cast<std::size_t>(read.file.n));
+    const Result r = solve(read.file.view(), o, x.data());
+    ASSERT_EQ(r.status, Status::Converged) << r.message;
+    EXPECT_GT(r.pivoting.lemke_pivots, 0);
+    EXPECT_LE(r.residuals.relative_natural, 1e-8);
+    EXPECT_LE(compute_residuals(read.file.view(), ConstStrided{x.data(), 1}).relative_natural, 1e-8);
 }
 
 TEST(SolverFriction, ZeroNormalPinsItsFrictionRowsAtZero) {

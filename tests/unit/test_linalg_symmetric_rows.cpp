@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -42,6 +43,61 @@ void expect_same_rows(const SymmetricRows& a, const SymmetricRows& b) {
         for (int k = 0; k < a.row_end(i) - a.row_begin(i); ++k) {
             EXPECT_EQ(a.col(a.row_begin(i) + k), b.col(b.row_begin(i) + k)) << "row " << i;
             EXPECT_EQ(a.val(a.row_begin(i) + k), b.val(b.row_begin(i) + k)) << "row " << i;
+        }
+    }
+}
+
+// A dense problem's A read into rows (SymmetricRows::assign): the non-zeros, and with blocks that
+// tile the rows also every entry of two blocks that share a body (the joints' structural
+// pattern, zeros included), each row in increasing column. Long zero runs, zeros of either sign
+// and a NaN against the rule written out pair by pair.
+TEST(SymmetricRows, DenseAssignKeepsTheNonZerosAndTheCoupledBlocks) {
+    const int sizes[] = {3, 1, 4, 2, 6, 3, 5, 9, 2};
+    std::vector<int> block_row{0};
+    for (int s : sizes) block_row.push_back(block_row.back() + s);
+    const int n = block_row.back(), blocks = static_cast<int>(block_row.size()) - 1;
+    // bodies 0..5, -1 the static environment; blocks 2 and 7 touch nothing but the environment
+    const std::vector<int> block_body{0, 1, 1, -1, -1, -1, 2, 3, 0, 2, 4, -1, 5, 4, -1, -1, 3, 5};
+    std::vector<int> block_of;
+    for (int q = 0; q < blocks; ++q) block_of.insert(block_of.end(), sizes[q], q);
+    const auto coupled = [&](int p, int q) {
+        if (p == q) return true;
+        for (int a : {block_body[2 * p], block_body[2 * p + 1]})
+            for (int b : {block_body[2 * q], block_body[2 * q + 1]})
+                if (a >= 0 && a == b) return true;
+        return false;
+    };
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<double> a(static_cast<std::size_t>(n) * n, 0.0);
+    for (int i = 0; i < n; ++i) {
+        a[i * n + i] = 10;
+        for (int j = 0; j < i; ++j) {
+            const double r = u(rng);
+            a[i * n + j] = r < 0.15 ? r - 0.5 : r < 0.25 ? -0.0 : 0.0;
+        }
+    }
+    a[20 * n + 3] = std::numeric_limits<double>::quiet_NaN();
+    for (const bool with_blocks : {false, true}) {
+        Problem p;
+        p.n = n;
+        p.A = a.data();
+        p.lda = n;
+        if (with_blocks) {
+            p.num_blocks = blocks;
+            p.block_row = block_row.data();
+            p.block_body = block_body.data();
+        }
+        const SymmetricRows rows(p, {});
+        for (int i = 0; i < n; ++i) {
+            std::vector<int> expected;
+            for (int j = 0; j < n; ++j) {
+                const double v = i > j ? a[i * n + j] : a[j * n + i];
+                if (j != i && (v != 0 || (with_blocks && coupled(block_of[i], block_of[j])))) expected.push_back(j);
+            }
+            std::vector<int> stored;
+            for (int k = rows.row_begin(i); k < rows.row_end(i); ++k) stored.push_back(rows.col(k));
+            EXPECT_EQ(stored, expected) << "row " << i << (with_blocks ? " with blocks" : "");
         }
     }
 }

@@ -1,18 +1,33 @@
 #include "linalg/incremental_cholesky.h"
 
-#include <Eigen/Core>
-
 #include <algorithm>
 #include <cmath>
 
 #include "linalg/cholesky_pivot.h"
+#include "linalg/kernel_clones.h"
 
 namespace ode_bpp::linalg {
 
 namespace {
 
-using Segment = Eigen::Map<Eigen::VectorXd>;
-using ConstSegment = Eigen::Map<const Eigen::VectorXd>;
+/// sum_k a[k] b[k] over k < n, in four partial sums (k mod 4) added as (s0 + s1) + (s2 + s3):
+/// one fixed order, which the AVX2 copy of a kernel keeps in one register and the baseline in
+/// two, with the same bits (kernel_clones.h). Short envelope rows are most of the calls, so the
+/// loop has no set-up beyond its tail.
+[[gnu::always_inline]] inline double dot(const double* a, const double* b, int n) {
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+    int k = 0;
+    for (; k + 4 <= n; k += 4) {
+        s0 += a[k] * b[k];
+        s1 += a[k + 1] * b[k + 1];
+        s2 += a[k + 2] * b[k + 2];
+        s3 += a[k + 3] * b[k + 3];
+    }
+    if (k < n) s0 += a[k] * b[k];
+    if (k + 1 < n) s1 += a[k + 1] * b[k + 1];
+    if (k + 2 < n) s2 += a[k + 2] * b[k + 2];
+    return (s0 + s1) + (s2 + s3);
+}
 
 }  // namespace
 
@@ -35,21 +50,32 @@ void IncrementalCholesky::grow(std::size_t entries) {
     L_ = std::move(larger);
 }
 
+namespace {
+
+/// The new row l = L⁻¹ c of append (l[k - first] = c_k on entry, for first <= k < m): forward
+/// substitution, one dot product per row over the overlap of the two envelopes; then |l|². Rows
+/// of L are packed at L + start[k], from column first_col[k]. On x86-64 also compiled for AVX2
+/// (kernel_clones.h): the same bits.
+KERNEL_FOR_AVX2_TOO
+double forward_new_row(const double* L, const std::size_t* start, const int* first_col, double* l, int first, int m) {
+    for (int k = first; k < m; ++k) {
+        const int fk = first_col[k];
+        const int from = std::max(fk, first);
+        const double* Lk = L + start[k];
+        l[k - first] = (l[k - first] - dot(Lk + (from - fk), l + (from - first), k - from)) / Lk[k - fk];
+    }
+    return dot(l, l, m - first);
+}
+
+}  // namespace
+
 bool IncrementalCholesky::append(const double* column, int first, double diagonal) {
     const int m = size_;
     const std::size_t begin = start_[static_cast<std::size_t>(m)];
     grow(begin + static_cast<std::size_t>(m - first + 1));
     double* l = L_.data() + begin;  // l[k - first] = L(m, k)
     std::copy(column + first, column + m, l);
-    // Forward substitution, one dot product per row over the overlap of the two envelopes
-    for (int k = first; k < m; ++k) {
-        const int from = std::max(first_[static_cast<std::size_t>(k)], first);
-        const double* Lk = row_entries(k);
-        const int fk = first_[static_cast<std::size_t>(k)];
-        const double dot = ConstSegment(Lk + (from - fk), k - from).dot(ConstSegment(l + (from - first), k - from));
-        l[k - first] = (l[k - first] - dot) / Lk[k - fk];
-    }
-    const double pivot = diagonal - ConstSegment(l, m - first).squaredNorm();
+    const double pivot = diagonal - forward_new_row(L_.data(), start_.data(), first_.data(), l, first, m);
     if (pivot_breaks_down(pivot, diagonal)) return false;
     l[m - first] = std::sqrt(pivot);
     first_[static_cast<std::size_t>(m)] = first;
@@ -94,21 +120,31 @@ void IncrementalCholesky::remove(int p) {
     --size_;
 }
 
-void IncrementalCholesky::solve(double* x) const {
-    // L y = x: a dot product per row over its envelope
-    for (int i = 0; i < size_; ++i) {
-        const int f = first(i);
-        const double* Li = row_entries(i);
-        x[i] = (x[i] - ConstSegment(Li, i - f).dot(ConstSegment(x + f, i - f))) / Li[i - f];
+namespace {
+
+/// x <- (L Lᵀ)⁻¹ x for the n packed rows of L (as in forward_new_row): L y = x by a dot product
+/// per row over its envelope, then Lᵀ x = y, row i of L being column i of Lᵀ, by an axpy per
+/// row. On x86-64 also compiled for AVX2 (kernel_clones.h): the same bits.
+KERNEL_FOR_AVX2_TOO
+void solve_packed(const double* L, const std::size_t* start, const int* first_col, int n, double* x) {
+    for (int i = 0; i < n; ++i) {
+        const int f = first_col[i];
+        const double* Li = L + start[i];
+        x[i] = (x[i] - dot(Li, x + f, i - f)) / Li[i - f];
     }
-    // Lᵀ x = y: row i of L is column i of Lᵀ, an axpy per row
-    for (int i = size_ - 1; i >= 0; --i) {
-        const int f = first(i);
-        const double* Li = row_entries(i);
-        x[i] /= Li[i - f];
-        Segment(x + f, i - f) -= x[i] * ConstSegment(Li, i - f);
+    for (int i = n - 1; i >= 0; --i) {
+        const int f = first_col[i];
+        const double* Li = L + start[i];
+        const double xi = x[i] / Li[i - f];
+        x[i] = xi;
+        double* xf = x + f;
+        for (int k = 0; k < i - f; ++k) xf[k] -= xi * Li[k];
     }
 }
+
+}  // namespace
+
+void IncrementalCholesky::solve(double* x) const { solve_packed(L_.data(), start_.data(), first_.data(), size_, x); }
 
 void IncrementalCholesky::release() {
     L_.release();

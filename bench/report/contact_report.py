@@ -159,8 +159,9 @@ def fallback_target(lines, targets, out_dir):
         listed.append(f"{scene} {fallbacks}")
         ok = ok and fallbacks == 0
     lines.append("")
+    # a scene that did not run counts against the target: "not run" stands in the measured list
     targets.add("islands answered through a fallback inside ODE (bpp, CFM 1e-10)", "; ".join(listed), "0 on each",
-                ok and measured, measured_at_all=measured or bool(listed))
+                ok and measured)
 
 
 def certified_target(lines, targets, bench):

@@ -8,7 +8,6 @@ the misses. Standard library only (plus make_report's helpers)."""
 import csv
 import math
 import os
-from collections import defaultdict
 
 import make_report as common
 
@@ -47,14 +46,8 @@ def step_file(scene, regime):
 
 def whole_steps(out_dir, scene, regime):
     """per solver: (step_ms per step, solve_ms per step summed over its islands)."""
-    path = os.path.join(out_dir, "steps", step_file(scene, regime))
-    per = defaultdict(dict)
-    if os.path.exists(path):
-        with open(path, newline="") as handle:
-            for row in csv.DictReader(handle):
-                entry = per[row["solver"]].setdefault(int(row["step"]), [common.num(row["step_ms"]), 0.0])
-                entry[1] += common.num(row["solve_ms"])
-    return {solver: ([v[0] for v in steps.values()], [v[1] for v in steps.values()]) for solver, steps in per.items()}
+    steps = common.load_steps(out_dir, scene, step_file(scene, regime))
+    return {solver: ([s[1] for s in per], [s[2] for s in per]) for solver, per in steps.items()}
 
 
 def speed_rows(bench, out_dir):
@@ -101,20 +94,6 @@ def certified_counts(bench, scene, regime):
     residuals = [common.num(r["relative_natural_residual"]) for r in rows]
     certified = sum(r["status"] == "converged" and res <= CERTIFY_LEVEL for r, res in zip(rows, residuals))
     return certified, len(rows), max(common.finite(residuals), default=math.nan)
-
-
-class Targets:
-    """The rows of the section's target table, and the misses for the report's list."""
-
-    def __init__(self, missed):
-        self.rows = []
-        self.missed = missed
-
-    def add(self, what, measured, target, ok, measured_at_all=True):
-        verdict = common.verdict(ok) if measured_at_all else "not measured"
-        self.rows.append(f"| {what} | {measured} | {target} | {verdict} |")
-        if not ok or not measured_at_all:
-            self.missed.append(f"hard contact: {what}: {measured if measured_at_all else 'not measured'} (target {target})")
 
 
 def ratio_target(targets, rows, key, what, target, regime=None):
@@ -213,7 +192,7 @@ def speed_table(lines, rows):
 def section(lines, out_dir, bench, missed, failures):
     """The whole section; every part runs under make_report's section() guard."""
     lines.append("## Hard contact: against Dantzig, fallbacks and certified answers (issue 13)\n")
-    targets = Targets(missed)
+    targets = common.Targets(missed, "hard contact")
     body = []
     rows = common.section(body, failures, "hard contact: speed", speed_rows, bench, out_dir) or []
     if rows:

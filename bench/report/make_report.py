@@ -85,6 +85,24 @@ def verdict(ok, measured=True, gap=""):
     return ("met" if ok else "**missed**") + (f" ({gap})" if gap else "")
 
 
+class Targets:
+    """The rows of a section's target table, and its misses for the report's list, each prefixed
+    with the section's name."""
+
+    def __init__(self, missed, prefix):
+        self.rows = []
+        self.missed = missed
+        self.prefix = prefix
+
+    def add(self, what, measured, target, ok, gap="", measured_at_all=True):
+        verdict_text = verdict(ok, measured_at_all, gap) if measured_at_all else "not measured"
+        self.rows.append(f"| {what} | {measured} | {target} | {verdict_text} |")
+        if measured_at_all and not ok:
+            self.missed.append(f"{self.prefix}: {what}: {measured} (target {target})")
+        if not measured_at_all:
+            self.missed.append(f"{self.prefix}: {what}: not measured")
+
+
 def gap(measured, target):
     """measured relative to target, in % (+ above, − below)."""
     if math.isnan(measured) or math.isnan(target) or target == 0:
@@ -152,9 +170,10 @@ def frame_is_tight(methods):
     return "bpp-chol" in methods and methods["bpp-chol"]["tight"] > 0
 
 
-def load_steps(out_dir, scene):
-    """per solver: list of (step, step_ms, solve_ms summed over islands)."""
-    path = os.path.join(out_dir, "steps", f"{scene}-step.csv")
+def load_steps(out_dir, scene, name=None):
+    """per solver: list of (step, step_ms, solve_ms summed over islands), from OUT_DIR/steps/NAME
+    (default: the CFM 1e-10 run, <scene>-step.csv)."""
+    path = os.path.join(out_dir, "steps", name or f"{scene}-step.csv")
     steps = defaultdict(dict)
     if not os.path.exists(path):
         return {}

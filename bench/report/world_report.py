@@ -54,22 +54,6 @@ def metres(value):
     return "–" if math.isnan(value) else f"{value:.1e} m"
 
 
-class Targets:
-    """The rows of the section's target table, and the misses for the report's list."""
-
-    def __init__(self, missed):
-        self.rows = []
-        self.missed = missed
-
-    def add(self, what, measured, target, ok, gap="", measured_at_all=True):
-        verdict = common.verdict(ok, measured_at_all, gap) if measured_at_all else "not measured"
-        self.rows.append(f"| {what} | {measured} | {target} | {verdict} |")
-        if measured_at_all and not ok:
-            self.missed.append(f"sparse world step: {what}: {measured} (target {target})")
-        if not measured_at_all:
-            self.missed.append(f"sparse world step: {what}: not measured")
-
-
 # ------------------------------------------------------------------------------------------
 # chain scaling
 
@@ -543,7 +527,7 @@ def section(lines, out_dir, bench, missed, failures):
         lines.append("Not measured (scripts/bench-world.sh did not run; see the failures).\n")
         missed.append("sparse world step: not measured")
         return
-    targets = Targets(missed)
+    targets = common.Targets(missed, "sparse world step")
     body = []
     for name, function, args in (("chain scaling", chain_table, (body, world, targets)),
                                  ("scenes against QuickStep", scenes_table, (body, world, targets)),

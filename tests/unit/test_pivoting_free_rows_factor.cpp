@@ -1,13 +1,16 @@
 // FreeRowsFactor (pivoting/free_rows_factor.h): after a reset and any sequence of rows joining
 // and leaving F, solve() is Eq. 6, x_F = (A + shift I)_FF⁻¹ (b - A_FT x_T)_F with the tight
 // values given (against a dense solve); rows joining out of order make F refactor itself in
-// increasing index once they have widened its envelope, with the same answers.
+// increasing index once they have widened its envelope, with the same answers; a reset seeded
+// with the pivoting loop's skyline factor of another free set solves it too.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 #include <vector>
 
+#include "linalg/skyline.h"
+#include "linalg/skyline_cholesky.h"
 #include "linalg/symmetric_rows.h"
 #include "pivoting/free_rows_factor.h"
 #include "test_linalg_support.h"
@@ -129,6 +132,60 @@ TEST(PivotingFreeRowsFactor, RefactorsInIncreasingIndexOnceRowsJoiningOutOfOrder
         expect_eq6(factor, f, tight, x);
     }
     EXPECT_TRUE(reordered);
+}
+
+// The seeded reset reads L_FF off a skyline factor of another free set (the pivoting loop's), then
+// lets rows leave and join: Eq. 6 holds at the new free set, the factor keeps working through
+// further moves, and without a seed the same call is the plain reset.
+TEST(PivotingFreeRowsFactor, SeededResetSolvesEq6AtTheNewFreeSet) {
+    std::mt19937 rng(23);
+    for (int trial = 0; trial < 10; ++trial) {
+        const int n = 10 + static_cast<int>(rng() % 50);
+        const double shift = trial % 2 ? 1e-3 : 0.0;
+        const Fixture f(n, 1 + static_cast<int>(rng() % 8), shift, rng);
+        const std::vector<char> seed_tight = test::random_removed(n, 0.3, rng);
+        std::vector<int> seed_rows;
+        for (int i = 0; i < n; ++i)
+            if (seed_tight[i]) seed_rows.push_back(i);
+        MatrixXd shifted = f.dense;
+        shifted.diagonal().array() += shift;
+        linalg::SkylineMatrix L = test::from_dense(shifted, linalg::SkylineShape::from_row_profile(f.A.row_profile()));
+        ASSERT_LT(linalg::skyline_cholesky(L, 0, seed_tight), 0);
+
+        std::uniform_real_distribution<double> u(-1, 1);
+        std::vector<RowState> states(static_cast<std::size_t>(n), RowState::Free);
+        std::vector<char> tight(static_cast<std::size_t>(n), 0);
+        std::vector<double> x(static_cast<std::size_t>(n), 0.0);
+        int changed = 0;
+        for (int i = 0; i < n; ++i) {
+            tight[i] = rng() % 5 == 0 ? !seed_tight[i] : seed_tight[i];  // a fifth of the rows change set
+            changed += tight[i] != seed_tight[i];
+            if (!tight[i]) continue;
+            states[i] = RowState::AtHi;
+            x[i] = u(rng);
+        }
+        FreeRowsFactor factor;
+        ASSERT_TRUE(factor.reset(f.lcp, states, x, EnvelopeFactor{&L, &seed_rows}));
+        std::vector<int> free_rows = factor.members();
+        std::sort(free_rows.begin(), free_rows.end());
+        EXPECT_EQ(free_rows, test::kept_indices(tight)) << "trial " << trial << ", " << changed << " rows changed set";
+        expect_eq6(factor, f, tight, x);
+        for (int move = 0; move < n; ++move) {
+            const int i = static_cast<int>(rng() % n);
+            if (tight[i]) {
+                ASSERT_TRUE(factor.add(i));
+                tight[i] = 0;
+            } else {
+                x[i] = u(rng);
+                factor.remove(i, x[i]);
+                tight[i] = 1;
+            }
+            expect_eq6(factor, f, tight, x);
+        }
+        FreeRowsFactor plain;
+        ASSERT_TRUE(plain.reset(f.lcp, states, x, EnvelopeFactor{}));
+        EXPECT_TRUE(std::is_sorted(plain.members().begin(), plain.members().end()));
+    }
 }
 
 }  // namespace

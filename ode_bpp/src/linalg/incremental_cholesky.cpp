@@ -84,6 +84,18 @@ bool IncrementalCholesky::append(const double* column, int first, double diagona
     return true;
 }
 
+void IncrementalCholesky::load_shape(const int* first, int size) {
+    size_ = 0;  // nothing kept: grow() copies no entries
+    start_.resize(static_cast<std::size_t>(size) + 1);
+    start_[0] = 0;
+    for (int i = 0; i < size; ++i) {
+        first_[static_cast<std::size_t>(i)] = first[i];
+        start_[static_cast<std::size_t>(i) + 1] = start_[static_cast<std::size_t>(i)] + static_cast<std::size_t>(i - first[i] + 1);
+    }
+    grow(start_.back());
+    size_ = size;
+}
+
 void IncrementalCholesky::remove(int p) {
     for (int i = p + 1; i < size_; ++i) sigma_[i] = first(i) <= p ? entry(i, p) : 0.0;
     // Row i (old position) meets the rotations of columns max(p+1, first(i)) .. i-1 in turn (the

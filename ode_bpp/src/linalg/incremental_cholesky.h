@@ -46,6 +46,14 @@ public:
     /// dependent on S to machine precision). Requires 0 <= first <= size() < capacity.
     bool append(const double* column, int first, double diagonal);
 
+    /// Makes S `size` indices whose factor is known from elsewhere (FreeRowsFactor's reset from
+    /// the pivoting loop's skyline factor), row i of L recorded from column first[i] <= i on:
+    /// the caller then writes L(i, first[i] .. i) through loaded_row(i), the diagonal positive,
+    /// before any other call. Nothing is computed. Requires size <= capacity.
+    void load_shape(const int* first, int size);
+    /// Row i's recorded entries, L(i, first(i)) .. L(i, i), for load_shape's caller to write.
+    double* loaded_row(int i) { return row_entries(i); }
+
     /// Removes the index at position p of S (0 <= p < size()). With sigma = L(p+1:, p), the
     /// trailing block becomes chol(L33 L33ᵀ + sigma sigmaᵀ): a rank-1 *update* (nothing cancels,
     /// hence stable; the same maths as row_delete.h), by one Givens rotation per column, applied

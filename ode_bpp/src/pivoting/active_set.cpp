@@ -36,11 +36,11 @@ public:
         ws_.it.hi = lcp.hi;
     }
 
-    LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x) {
+    LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x, const EnvelopeFactor& seed) {
         ws_.entry_states = states;
         ws_.entry_x = x;
         project(states, x);
-        if (!factor_.reset(lcp_, states, x)) return give_up(states, x, LoopOutcome::Breakdown);
+        if (!factor_.reset(lcp_, states, x, seed)) return give_up(states, x, LoopOutcome::Breakdown);
         bool fresh = true;  // the factor has not been updated since it was built
         int polish_rounds = tuning::kPolishRounds;
         for (int step = 0; step < settings_.max_pivots; ++step) {
@@ -266,8 +266,8 @@ bool active_set_applies(const BoxedLcp& lcp) {
 
 LoopOutcome active_set(const BoxedLcp& lcp, const PivotSettings& settings, std::vector<RowState>& states,
                        std::vector<double>& x, PivotCounters& counters, ActiveSetWorkspace& workspace,
-                       FreeRowsFactor& factor) {
-    return ActiveSet(lcp, settings, counters, workspace.contents(), factor).run(states, x);
+                       FreeRowsFactor& factor, const EnvelopeFactor& seed) {
+    return ActiveSet(lcp, settings, counters, workspace.contents(), factor).run(states, x, seed);
 }
 
 }  // namespace ode_bpp::pivoting

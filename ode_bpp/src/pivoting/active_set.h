@@ -71,9 +71,10 @@ extern template class KeptBuffers<ActiveSetBuffers>;  // instantiated where Acti
 /// supports. MaxIterations or Breakdown (a row dependent on the free set to machine
 /// precision): states and x as they came in. Each step counts in counters.pivots, murty_pivots
 /// (a single pivot) and update_steps. factor: the free set's factor (its state on return
-/// unspecified).
+/// unspecified). seed: a factor of the same A + shift I to build the free set's factor from
+/// (FreeRowsFactor::reset), or none.
 LoopOutcome active_set(const BoxedLcp& lcp, const PivotSettings& settings, std::vector<RowState>& states,
                        std::vector<double>& x, PivotCounters& counters, ActiveSetWorkspace& workspace,
-                       FreeRowsFactor& factor);
+                       FreeRowsFactor& factor, const EnvelopeFactor& seed = {});
 
 }  // namespace ode_bpp::pivoting

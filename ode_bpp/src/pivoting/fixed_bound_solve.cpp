@@ -64,7 +64,7 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
 LoopOutcome FixedBoundSolver::by_active_set(std::vector<RowState>& states, std::vector<double>& x) {
     const int max_steps = tuning::kActiveSetStepsPerRow * lcp_.n() + tuning::kActiveSetStepsExtra;
     const LoopOutcome outcome = active_set(lcp_, settings(max_steps), states, x, counters_, buffers_.active_set,
-                                           buffers_.free_rows);
+                                           buffers_.free_rows, solver_.latest_factor());
     buffers_.free_rows.release();
     return outcome;
 }

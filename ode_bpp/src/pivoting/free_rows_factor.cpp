@@ -17,14 +17,72 @@ constexpr std::size_t kReorderGrowth = 2;
 
 bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x) {
     lcp_ = &lcp;
-    const int n = lcp.n();
+    take_tight_values(states, x);
+    members_.clear();
+    for (int i = 0; i < lcp.n(); ++i)
+        if (states[i] == RowState::Free) members_.push_back(i);
+    return refresh();
+}
+
+bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x,
+                           const EnvelopeFactor& seed) {
+    if (seed.L == nullptr || seed.L->n() != lcp.n()) return reset(lcp, states, x);
+    lcp_ = &lcp;
+    take_tight_values(states, x);
+    compute_tight_product();
+    load_seed(seed);
+    // the last position first: a removal rotates only the rows after it (incremental_cholesky.h)
+    for (int p = static_cast<int>(members_.size()) - 1; p >= 0; --p)
+        if (states[members_[p]] != RowState::Free) drop(p);
+    for (int i = 0; i < lcp.n(); ++i)
+        if (states[i] == RowState::Free && position_[i] < 0 && !append_row(i)) return false;
+    refreshed_entries_ = factor_.stored_entries();
+    return true;
+}
+
+void FreeRowsFactor::take_tight_values(const std::vector<RowState>& states, const std::vector<double>& x) {
+    const int n = lcp_->n();
     tight_x_.assign(static_cast<std::size_t>(n), 0.0);
     for (int i = 0; i < n; ++i)
         if (states[i] != RowState::Free) tight_x_[i] = x[i];
+}
+
+void FreeRowsFactor::compute_tight_product() {
+    lcp_->A->multiply(tight_x_, 0, tight_product_);
+    for (int i = 0; i < lcp_->n(); ++i) tight_product_[i] -= lcp_->A->diag(i) * tight_x_[i];
+}
+
+/// Row i of L_FF is L(i, j) over the free columns j from the first column holding row i to i:
+/// every such column stores row i (its sky reaches i), so one pass down the seed's free columns
+/// writes each recorded entry once.
+void FreeRowsFactor::load_seed(const EnvelopeFactor& seed) {
+    const linalg::SkylineMatrix& L = *seed.L;
+    const int n = lcp_->n();
+    position_.assign(static_cast<std::size_t>(n), 0);
+    for (int i : *seed.tight_rows) position_[i] = -1;
     members_.clear();
-    for (int i = 0; i < n; ++i)
-        if (states[i] == RowState::Free) members_.push_back(i);
-    return refresh();
+    for (int i = 0; i < n; ++i) {
+        if (position_[i] < 0) continue;
+        position_[i] = static_cast<int>(members_.size());
+        members_.push_back(i);
+    }
+    seed_first_.resize(static_cast<std::size_t>(n) + 1);
+    seed_first_[n] = static_cast<int>(members_.size());
+    for (int i = n - 1; i >= 0; --i) seed_first_[i] = position_[i] >= 0 ? position_[i] : seed_first_[i + 1];
+    std::vector<int>& first = refresh_rows_;  // scratch here: F's first column of each member row
+    first.resize(members_.size());
+    for (std::size_t p = 0; p < members_.size(); ++p) first[p] = seed_first_[L.shape().first_column_holding(members_[p])];
+    factor_.reset(n);
+    factor_.load_shape(first.data(), static_cast<int>(members_.size()));
+    seed_rows_.resize(members_.size());  // seed_rows_[p][q] = L_FF(p, q) for first[p] <= q <= p
+    for (std::size_t p = 0; p < members_.size(); ++p) seed_rows_[p] = factor_.loaded_row(static_cast<int>(p)) - first[p];
+    for (int j : members_) {
+        const int q = position_[j];
+        const double* column = L.column(j) - j;
+        for (int r = j; r <= L.sky(j); ++r)
+            if (position_[r] >= 0) seed_rows_[static_cast<std::size_t>(position_[r])][q] = column[r];
+    }
+    column_.resize(static_cast<std::size_t>(n));
 }
 
 bool FreeRowsFactor::refresh() {
@@ -35,8 +93,7 @@ bool FreeRowsFactor::refresh() {
     factor_.reset(n);
     position_.assign(static_cast<std::size_t>(n), -1);
     column_.resize(static_cast<std::size_t>(n));
-    lcp_->A->multiply(tight_x_, 0, tight_product_);
-    for (int i = 0; i < n; ++i) tight_product_[i] -= lcp_->A->diag(i) * tight_x_[i];
+    compute_tight_product();
     for (int i : refresh_rows_)
         if (!append_row(i)) return false;
     refreshed_entries_ = factor_.stored_entries();
@@ -72,13 +129,16 @@ bool FreeRowsFactor::append_row(int i) {
 }
 
 void FreeRowsFactor::remove(int i, double value) {
-    const int p = position_[i];
-    factor_.remove(p);
-    members_.erase(members_.begin() + p);
-    position_[i] = -1;
-    for (int k = p; k < static_cast<int>(members_.size()); ++k) position_[members_[k]] = k;
+    drop(position_[i]);
     tight_x_[i] = value;
     if (value != 0) add_column(i, value);
+}
+
+void FreeRowsFactor::drop(int p) {
+    factor_.remove(p);
+    position_[members_[p]] = -1;
+    members_.erase(members_.begin() + p);
+    for (int k = p; k < static_cast<int>(members_.size()); ++k) position_[members_[k]] = k;
 }
 
 void FreeRowsFactor::add_column(int i, double factor) {

@@ -15,6 +15,7 @@
 #include "linalg/incremental_cholesky.h"
 #include "ode_bpp/solver.h"
 #include "pivoting/boxed_lcp.h"
+#include "pivoting/free_solver.h"
 #include "pivoting/iterate.h"
 
 namespace ode_bpp::pivoting {
@@ -25,6 +26,13 @@ public:
     /// (which must outlive the factor's use); x_T: the tight rows' values in x. False on breakdown
     /// (a free row dependent on the others to machine precision).
     bool reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x);
+    /// The same from `seed`, a factor of the same A + shift I that the pivoting loop holds
+    /// (FreeSolver::latest_factor) for its own free set F_s: L_FF of F_s is read off the seed as
+    /// it stands, in increasing index, then the rows of F_s that `states` holds tight leave it
+    /// and the free rows outside F_s join it, one update each (linalg/incremental_cholesky.h), in
+    /// place of factoring F afresh. The plain reset where there is no seed.
+    bool reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x,
+               const EnvelopeFactor& seed);
 
     /// Tight row i joins F as the factor's last row; false, F unchanged, on breakdown.
     bool add(int i);
@@ -49,6 +57,10 @@ public:
 private:
     void add_column(int i, double factor);  ///< tight_product_ += factor A(:, i), off the diagonal
     bool append_row(int i);                 ///< add() without the reordering check
+    void drop(int p);                       ///< the member at position p leaves F (factor and members only)
+    void take_tight_values(const std::vector<RowState>& states, const std::vector<double>& x);
+    void compute_tight_product();           ///< tight_product_ from tight_x_
+    void load_seed(const EnvelopeFactor& seed);  ///< F = F_s with the seed's L_FF (reset's seeded form)
 
     const BoxedLcp* lcp_ = nullptr;
     linalg::IncrementalCholesky factor_;
@@ -58,6 +70,8 @@ private:
     std::vector<double> tight_product_;   ///< A x_T without the diagonal: on F, A_FT x_T
     std::vector<double> column_;
     std::vector<int> refresh_rows_;
+    std::vector<int> seed_first_;         ///< load_seed's F position of the first free row >= j
+    std::vector<double*> seed_rows_;      ///< load_seed's rows of L_FF, indexed by F position
     std::size_t refreshed_entries_ = 0;   ///< the factor's stored entries after the last refresh()
     mutable std::vector<double> rhs_;
 };

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ode_bpp/solver.h"
+#include "linalg/skyline.h"
 #include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting {
@@ -16,6 +17,14 @@ enum class FactorOutcome {
     Deleted,     ///< copied from L0 with the tight rows deleted (Alg. 2 lines 7-11)
     Refactored,  ///< a (partial) Cholesky factorization of A_FF
     Breakdown,   ///< a Cholesky pivot was not safely positive: A_FF is not numerically SPD
+};
+
+/// The factor of a strategy's latest successful solve_free, where it keeps one on the envelope:
+/// L of Ap + shift I in skyline storage with every tight row and column replaced by the identity
+/// (row_delete.h, skyline_cholesky.h's removed rows), so that L_FF is L on the free rows.
+struct EnvelopeFactor {
+    const linalg::SkylineMatrix* L = nullptr;   ///< null: none kept
+    const std::vector<int>* tight_rows = nullptr;  ///< T, ascending
 };
 
 /// Everything in the permuted index space of the linalg::SymmetricRows the strategy was built on.
@@ -36,6 +45,9 @@ public:
     virtual void solve_again(std::vector<double>& x) = 0;
     /// Table 4: ||L_deleted - chol(A_FF)||_F at this tight set, or NaN where not meaningful.
     virtual double factor_error(const std::vector<char>& tight) const;
+    /// The latest solve_free's factor, valid until the next call of prepare or solve_free; none
+    /// after a breakdown, after prepare, and for the dense strategies.
+    virtual EnvelopeFactor latest_factor() const { return {}; }
 };
 
 struct StrategyBuffers;  // strategies.h

@@ -119,6 +119,11 @@ public:
         if (last_factor_ != nullptr) linalg::skyline_solve(*last_factor_, x.data());
     }
 
+    EnvelopeFactor latest_factor() const override {
+        if (last_factor_ == nullptr) return {};
+        return {last_factor_, &s_.tight_rows};
+    }
+
     /// Table 4: L0 with every tight row deleted against a fresh factor of A_FF.
     double factor_error(const std::vector<char>& tight) const override {
         if (l0_broken_) return std::numeric_limits<double>::quiet_NaN();

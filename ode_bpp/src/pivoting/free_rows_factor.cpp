@@ -52,9 +52,10 @@ void FreeRowsFactor::compute_tight_product() {
     for (int i = 0; i < lcp_->n(); ++i) tight_product_[i] -= lcp_->A->diag(i) * tight_x_[i];
 }
 
-/// Row i of L_FF is L(i, j) over the free columns j from the first column holding row i to i:
-/// every such column stores row i (its sky reaches i), so one pass down the seed's free columns
-/// writes each recorded entry once.
+/// Row i of L_FF is L(i, j) over the free columns j from its first non-zero on (found by walking
+/// row i from the first column holding it: a few entries), so its recorded envelope is what a
+/// bordered factorization would record (incremental_cholesky.h), and every such column stores row
+/// i (its sky reaches i): one pass down the seed's free columns writes each recorded entry once.
 void FreeRowsFactor::load_seed(const EnvelopeFactor& seed) {
     const linalg::SkylineMatrix& L = *seed.L;
     const int n = lcp_->n();
@@ -66,12 +67,14 @@ void FreeRowsFactor::load_seed(const EnvelopeFactor& seed) {
         position_[i] = static_cast<int>(members_.size());
         members_.push_back(i);
     }
-    seed_first_.resize(static_cast<std::size_t>(n) + 1);
-    seed_first_[n] = static_cast<int>(members_.size());
-    for (int i = n - 1; i >= 0; --i) seed_first_[i] = position_[i] >= 0 ? position_[i] : seed_first_[i + 1];
-    std::vector<int>& first = refresh_rows_;  // scratch here: F's first column of each member row
+    std::vector<int>& first = refresh_rows_;  // scratch here: F's first recorded column of each member row
     first.resize(members_.size());
-    for (std::size_t p = 0; p < members_.size(); ++p) first[p] = seed_first_[L.shape().first_column_holding(members_[p])];
+    for (std::size_t p = 0; p < members_.size(); ++p) {
+        const int i = members_[p];
+        int j = L.shape().first_column_holding(i);
+        while (j < i && (position_[j] < 0 || L.at(i, j) == 0.0)) ++j;
+        first[p] = position_[j];
+    }
     factor_.reset(n);
     factor_.load_shape(first.data(), static_cast<int>(members_.size()));
     seed_rows_.resize(members_.size());  // seed_rows_[p][q] = L_FF(p, q) for first[p] <= q <= p
@@ -79,8 +82,10 @@ void FreeRowsFactor::load_seed(const EnvelopeFactor& seed) {
     for (int j : members_) {
         const int q = position_[j];
         const double* column = L.column(j) - j;
-        for (int r = j; r <= L.sky(j); ++r)
-            if (position_[r] >= 0) seed_rows_[static_cast<std::size_t>(position_[r])][q] = column[r];
+        for (int r = j; r <= L.sky(j); ++r) {
+            const int p = position_[r];
+            if (p >= 0 && q >= first[static_cast<std::size_t>(p)]) seed_rows_[static_cast<std::size_t>(p)][q] = column[r];
+        }
     }
     column_.resize(static_cast<std::size_t>(n));
 }

@@ -70,7 +70,6 @@ private:
     std::vector<double> tight_product_;   ///< A x_T without the diagonal: on F, A_FT x_T
     std::vector<double> column_;
     std::vector<int> refresh_rows_;
-    std::vector<int> seed_first_;         ///< load_seed's F position of the first free row >= j
     std::vector<double*> seed_rows_;      ///< load_seed's rows of L_FF, indexed by F position
     std::size_t refreshed_entries_ = 0;   ///< the factor's stored entries after the last refresh()
     mutable std::vector<double> rhs_;

@@ -36,6 +36,7 @@ Result solve_captured(const std::string& name, bool active_set, int rescue_after
     o.dantzig_fallback = false;
     o.tuning.active_set = active_set;
     o.tuning.rescue_after = rescue_after;
+    o.tuning.rescue_after_moved_bounds_cold = std::min(o.tuning.rescue_after_moved_bounds_cold, rescue_after);
     std::vector<double> x(static_cast<std::size_t>(read.file.n));
     return solve(read.file.view(), o, x.data());
 }
@@ -109,6 +110,27 @@ TEST(PivotingActiveSet, TakesFrozenFrictionsMovedBoundsAfterFewerPlainSteps) {
     };
     EXPECT_EQ(solve_flipped(o.tuning.rescue_after).pivoting.update_steps, 0) << "block steps alone finish";
     EXPECT_GT(solve_flipped(1).pivoting.update_steps, 0) << "the active set did not take over";
+}
+
+// Without a warm start Frozen friction's second solve has rescue_after_moved_bounds_cold plain
+// steps, and only those: the warm start's setting leaves a cold solve alone, and with one plain
+// step the active set takes over and reaches the answer block steps reach alone.
+TEST(PivotingActiveSet, TakesAColdSolvesMovedBoundsAfterItsOwnPlainSteps) {
+    const auto owned = problems::chain_mlcp(30, 20);
+    const Problem p = owned.view();
+    Options o;
+    o.dantzig_fallback = false;
+    o.tuning.rescue_after_moved_bounds_cold = o.tuning.rescue_after;
+    o.tuning.rescue_after_moved_bounds = 1;  // a warm start's: not this solve's
+    std::vector<double> reference(static_cast<std::size_t>(p.n)), x(static_cast<std::size_t>(p.n));
+    const Result block = solve(p, o, reference.data());
+    ASSERT_EQ(block.status, Status::Converged) << block.message;
+    EXPECT_EQ(block.pivoting.update_steps, 0) << "block steps alone finish";
+    o.tuning.rescue_after_moved_bounds_cold = 1;
+    const Result r = solve(p, o, x.data());
+    ASSERT_EQ(r.status, Status::Converged) << r.message;
+    EXPECT_GT(r.pivoting.update_steps, 0) << "the active set did not take over";
+    EXPECT_LT(problems::max_abs_diff(x, reference), 1e-6 * (1 + problems::inf_norm(reference)));
 }
 
 // With one plain step before it, the active set answers most of the problem on random boxed

@@ -138,6 +138,11 @@ struct Tuning {
     /// tens of nearly redundant friction rows back and forth where the active set settles them
     /// (docs/tuning.md). Used only while rescue_after > 0; at least 1.
     int rescue_after_moved_bounds = 2;
+    /// The same for that solve without a warm start (a new island, the corpus): its friction
+    /// rows start free, not in states that miss their bounds, so block steps get further, but on
+    /// most forwarder and winch islands they still end cycling after the first few steps, and the
+    /// active set, which starts from the loop's own factor, finishes sooner (docs/tuning.md).
+    int rescue_after_moved_bounds_cold = 4;
     /// Where that plain attempt does not converge, an active-set method on the box QP from its
     /// least infeasible iterate: it terminates finitely, the rows with wrong-sign multipliers
     /// leaving the tight set together and a ratio test keeping x within its bounds, each row

@@ -134,7 +134,8 @@ bool FixedBoundSolver::prepare(double shift) {
 int FixedBoundSolver::plain_steps() const {
     const Tuning& t = options_.tuning;
     if (t.rescue_after <= 0) return 0;
-    return warm_ && start_bounds_ == StartBounds::Moved ? std::max(1, t.rescue_after_moved_bounds) : t.rescue_after;
+    if (start_bounds_ != StartBounds::Moved) return t.rescue_after;
+    return std::max(1, warm_ ? t.rescue_after_moved_bounds : t.rescue_after_moved_bounds_cold);
 }
 
 PivotSettings FixedBoundSolver::settings(int budget) const {

@@ -1,8 +1,8 @@
 // One fixed-bound solve of a BPP method: the boxed LCP with its bounds as they stand (paper
 // Eq. 3-6) solved by the pivoting loop (pivot_loop.h) on the shifts that regularization.h
 // decides: the plain attempt from the warm start; where that does not converge within
-// Tuning::rescue_after steps (rescue_after_moved_bounds for a warm start whose bounds have just
-// moved, StartBounds), the active-set method on an incremental factor kept on its envelope
+// Tuning::rescue_after steps (rescue_after_moved_bounds, or rescue_after_moved_bounds_cold without
+// a warm start, for a solve whose bounds have just moved, StartBounds), the active-set method on an incremental factor kept on its envelope
 // (active_set.h, which terminates finitely), then the rescue continuation, then the plain loop
 // again where the rescue gives up; and all of it again one rung up the breakdown ladder after a
 // Cholesky breakdown.
@@ -46,7 +46,7 @@ enum class StartBounds { Same, Moved };
 class FixedBoundSolver {
 public:
     /// lcp: the problem (its shift is set here); solver: a factor strategy on lcp.A; options:
-    /// murty_after, tolerance, record_steps, rescue_after, rescue_after_moved_bounds,
+    /// murty_after, tolerance, record_steps, rescue_after, rescue_after_moved_bounds(_cold),
     /// continuation_stages; max_diag: max_i A_ii; counters: accumulated over every solve;
     /// buffers: the stages' buffers; warm: the caller's solve started from Start::states.
     FixedBoundSolver(BoxedLcp& lcp, FreeSolver& solver, const Options& options, double max_diag,

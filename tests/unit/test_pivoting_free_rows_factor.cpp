@@ -72,6 +72,26 @@ void expect_eq6(const FreeRowsFactor& factor, const Fixture& f, const std::vecto
     for (std::size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-9 * (1 + std::abs(want[i]))) << "row " << i;
 }
 
+/// `moves` random rows join or leave F in turn (a leaving row held at a random value), Eq. 6
+/// checked after each.
+void move_rows_checking_eq6(FreeRowsFactor& factor, const Fixture& f, std::vector<char>& tight, std::vector<double>& x,
+                            int moves, std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    const int n = static_cast<int>(x.size());
+    for (int move = 0; move < moves; ++move) {
+        const int i = static_cast<int>(rng() % n);
+        if (tight[i]) {
+            ASSERT_TRUE(factor.add(i));
+            tight[i] = 0;
+        } else {
+            x[i] = u(rng);
+            factor.remove(i, x[i]);
+            tight[i] = 1;
+        }
+        expect_eq6(factor, f, tight, x);
+    }
+}
+
 TEST(PivotingFreeRowsFactor, SolvesEq6AfterRowsJoinAndLeave) {
     std::mt19937 rng(21);
     for (int trial = 0; trial < 10; ++trial) {
@@ -90,18 +110,7 @@ TEST(PivotingFreeRowsFactor, SolvesEq6AfterRowsJoinAndLeave) {
         FreeRowsFactor factor;
         ASSERT_TRUE(factor.reset(f.lcp, states, x));
         expect_eq6(factor, f, tight, x);
-        for (int move = 0; move < 2 * n; ++move) {
-            const int i = static_cast<int>(rng() % n);
-            if (tight[i]) {
-                ASSERT_TRUE(factor.add(i));
-                tight[i] = 0;
-            } else {
-                x[i] = u(rng);
-                factor.remove(i, x[i]);
-                tight[i] = 1;
-            }
-            expect_eq6(factor, f, tight, x);
-        }
+        move_rows_checking_eq6(factor, f, tight, x, 2 * n, rng);
     }
 }
 
@@ -170,18 +179,7 @@ TEST(PivotingFreeRowsFactor, SeededResetSolvesEq6AtTheNewFreeSet) {
         std::sort(free_rows.begin(), free_rows.end());
         EXPECT_EQ(free_rows, test::kept_indices(tight)) << "trial " << trial << ", " << changed << " rows changed set";
         expect_eq6(factor, f, tight, x);
-        for (int move = 0; move < n; ++move) {
-            const int i = static_cast<int>(rng() % n);
-            if (tight[i]) {
-                ASSERT_TRUE(factor.add(i));
-                tight[i] = 0;
-            } else {
-                x[i] = u(rng);
-                factor.remove(i, x[i]);
-                tight[i] = 1;
-            }
-            expect_eq6(factor, f, tight, x);
-        }
+        move_rows_checking_eq6(factor, f, tight, x, n, rng);
         FreeRowsFactor plain;
         ASSERT_TRUE(plain.reset(f.lcp, states, x, EnvelopeFactor{}));
         EXPECT_TRUE(std::is_sorted(plain.members().begin(), plain.members().end()));

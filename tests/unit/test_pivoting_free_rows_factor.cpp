@@ -143,46 +143,85 @@ TEST(PivotingFreeRowsFactor, RefactorsInIncreasingIndexOnceRowsJoiningOutOfOrder
     EXPECT_TRUE(reordered);
 }
 
-// The seeded reset reads L_FF off a skyline factor of another free set (the pivoting loop's), then
-// lets rows leave and join: Eq. 6 holds at the new free set, the factor keeps working through
-// further moves, and without a seed the same call is the plain reset.
-TEST(PivotingFreeRowsFactor, SeededResetSolvesEq6AtTheNewFreeSet) {
-    std::mt19937 rng(23);
-    for (int trial = 0; trial < 10; ++trial) {
-        const int n = 10 + static_cast<int>(rng() % 50);
-        const double shift = trial % 2 ? 1e-3 : 0.0;
-        const Fixture f(n, 1 + static_cast<int>(rng() % 8), shift, rng);
-        const std::vector<char> seed_tight = test::random_removed(n, 0.3, rng);
-        std::vector<int> seed_rows;
-        for (int i = 0; i < n; ++i)
-            if (seed_tight[i]) seed_rows.push_back(i);
+/// A skyline factor of A + shift I with the rows of seed_tight removed (the pivoting loop's L), and
+/// those rows.
+struct Seed {
+    linalg::SkylineMatrix L;
+    std::vector<int> tight_rows;
+    Seed(const Fixture& f, const std::vector<char>& seed_tight) {
         MatrixXd shifted = f.dense;
-        shifted.diagonal().array() += shift;
-        linalg::SkylineMatrix L = test::from_dense(shifted, linalg::SkylineShape::from_row_profile(f.A.row_profile()));
-        ASSERT_LT(linalg::skyline_cholesky(L, 0, seed_tight), 0);
+        shifted.diagonal().array() += f.lcp.shift;
+        L = test::from_dense(shifted, linalg::SkylineShape::from_row_profile(f.A.row_profile()));
+        EXPECT_LT(linalg::skyline_cholesky(L, 0, seed_tight), 0);
+        for (int i = 0; i < static_cast<int>(seed_tight.size()); ++i)
+            if (seed_tight[i]) tight_rows.push_back(i);
+    }
+    EnvelopeFactor view() const { return {&L, &tight_rows}; }
+};
 
-        std::uniform_real_distribution<double> u(-1, 1);
-        std::vector<RowState> states(static_cast<std::size_t>(n), RowState::Free);
-        std::vector<char> tight(static_cast<std::size_t>(n), 0);
-        std::vector<double> x(static_cast<std::size_t>(n), 0.0);
-        int changed = 0;
-        for (int i = 0; i < n; ++i) {
-            tight[i] = rng() % 5 == 0 ? !seed_tight[i] : seed_tight[i];  // a fifth of the rows change set
-            changed += tight[i] != seed_tight[i];
-            if (!tight[i]) continue;
+/// The states of `tight` (at their upper bound, random values) and their values.
+void states_of(const std::vector<char>& tight, std::vector<RowState>& states, std::vector<double>& x, std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    states.assign(tight.size(), RowState::Free);
+    x.assign(tight.size(), 0.0);
+    for (std::size_t i = 0; i < tight.size(); ++i)
+        if (tight[i]) {
             states[i] = RowState::AtHi;
             x[i] = u(rng);
         }
+}
+
+// The seeded reset reads L_FF off a skyline factor of another free set (the pivoting loop's), then
+// lets rows leave and join: Eq. 6 holds at the new free set and through further moves. A row that
+// joins is appended last, so F out of increasing index shows that the seed served (the plain reset
+// builds F in increasing index).
+TEST(PivotingFreeRowsFactor, SeededResetSolvesEq6AtTheNewFreeSet) {
+    std::mt19937 rng(23);
+    for (int trial = 0; trial < 10; ++trial) {
+        const int n = 16 + static_cast<int>(rng() % 50);
+        const Fixture f(n, 1 + static_cast<int>(rng() % 8), trial % 2 ? 1e-3 : 0.0, rng);
+        std::vector<char> seed_tight(static_cast<std::size_t>(n), 0);
+        for (int i = 0; i < n; i += 3) seed_tight[i] = 1;  // a third tight; row 0 among them
+        const Seed seed(f, seed_tight);
+        std::vector<char> tight = seed_tight;
+        tight[0] = 0;  // joins: the seed's free rows follow it
+        for (int k = 0; k < n / 16; ++k) {  // and a few more change set
+            const int i = 1 + static_cast<int>(rng() % (n - 1));
+            tight[i] = !tight[i];
+        }
+        std::vector<RowState> states;
+        std::vector<double> x;
+        states_of(tight, states, x, rng);
         FreeRowsFactor factor;
-        ASSERT_TRUE(factor.reset(f.lcp, states, x, EnvelopeFactor{&L, &seed_rows}));
+        ASSERT_TRUE(factor.reset(f.lcp, states, x, seed.view()));
+        EXPECT_FALSE(std::is_sorted(factor.members().begin(), factor.members().end())) << "the seed did not serve";
         std::vector<int> free_rows = factor.members();
         std::sort(free_rows.begin(), free_rows.end());
-        EXPECT_EQ(free_rows, test::kept_indices(tight)) << "trial " << trial << ", " << changed << " rows changed set";
+        EXPECT_EQ(free_rows, test::kept_indices(tight)) << "trial " << trial;
         expect_eq6(factor, f, tight, x);
         move_rows_checking_eq6(factor, f, tight, x, n, rng);
-        FreeRowsFactor plain;
-        ASSERT_TRUE(plain.reset(f.lcp, states, x, EnvelopeFactor{}));
-        EXPECT_TRUE(std::is_sorted(plain.members().begin(), plain.members().end()));
+    }
+}
+
+// A seed that most rows disagree with is not used (the updates would cost more than a fresh
+// factorization), and neither is a missing one: the plain reset, in increasing index.
+TEST(PivotingFreeRowsFactor, SeededResetFactorsAfreshWhereTheSeedIsFarOrMissing) {
+    std::mt19937 rng(24);
+    const int n = 40;
+    const Fixture f(n, 4, 0.0, rng);
+    std::vector<char> seed_tight(static_cast<std::size_t>(n), 0);
+    for (int i = 0; i < n; i += 2) seed_tight[i] = 1;
+    const Seed seed(f, seed_tight);
+    std::vector<char> tight(static_cast<std::size_t>(n), 0);
+    for (int i = 1; i < n; i += 4) tight[i] = 1;  // three quarters of the rows change set
+    std::vector<RowState> states;
+    std::vector<double> x;
+    states_of(tight, states, x, rng);
+    for (const EnvelopeFactor& given : {seed.view(), EnvelopeFactor{}}) {
+        FreeRowsFactor factor;
+        ASSERT_TRUE(factor.reset(f.lcp, states, x, given));
+        EXPECT_EQ(factor.members(), test::kept_indices(tight));
+        expect_eq6(factor, f, tight, x);
     }
 }
 

@@ -13,6 +13,23 @@ namespace {
 /// factorization on the envelope costs about as much as a few solves on the widened one.
 constexpr std::size_t kReorderGrowth = 2;
 
+/// A seed serves while at most one row in this many of the new free set changes set against it.
+/// Each change costs about what a fresh factorization spends on a row or more (a removal rotates
+/// every row after it, an append is a forward solve). Where the start's projection tightens a
+/// third of the seed's free rows (the rock pile's islands of 1,000 rows) the seeded reset took
+/// three times the fresh one's instructions; on the forwarder one row in forty changes. 4 and 8
+/// gave the same counts on both; 2 cost the rock pile 1.4 % (docs/tuning.md).
+constexpr int kSeedRowsPerChange = 4;
+
+/// Rows that leave or join F between the seed's free set and `states`'.
+int changes_against(const EnvelopeFactor& seed, const std::vector<RowState>& states, std::vector<char>& seed_tight) {
+    seed_tight.assign(states.size(), 0);
+    for (int i : *seed.tight_rows) seed_tight[i] = 1;
+    int changes = 0;
+    for (std::size_t i = 0; i < states.size(); ++i) changes += (states[i] == RowState::Free) == static_cast<bool>(seed_tight[i]);
+    return changes;
+}
+
 }  // namespace
 
 bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x) {
@@ -27,6 +44,8 @@ bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& sta
 bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x,
                            const EnvelopeFactor& seed) {
     if (seed.L == nullptr || seed.L->n() != lcp.n()) return reset(lcp, states, x);
+    const int free_rows = static_cast<int>(std::count(states.begin(), states.end(), RowState::Free));
+    if (kSeedRowsPerChange * changes_against(seed, states, seed_tight_) > free_rows) return reset(lcp, states, x);
     lcp_ = &lcp;
     take_tight_values(states, x);
     compute_tight_product();

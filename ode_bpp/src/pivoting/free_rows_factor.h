@@ -30,7 +30,9 @@ public:
     /// (FreeSolver::latest_factor) for its own free set F_s: L_FF of F_s is read off the seed as
     /// it stands, in increasing index, then the rows of F_s that `states` holds tight leave it
     /// and the free rows outside F_s join it, one update each (linalg/incremental_cholesky.h), in
-    /// place of factoring F afresh. The plain reset where there is no seed.
+    /// place of factoring F afresh. The plain reset where there is no seed, or where more than
+    /// one row in four of F changes set against it (then the updates cost more than a fresh
+    /// factorization).
     bool reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x,
                const EnvelopeFactor& seed);
 
@@ -71,6 +73,7 @@ private:
     std::vector<double> column_;
     std::vector<int> refresh_rows_;
     std::vector<double*> seed_rows_;      ///< load_seed's rows of L_FF, indexed by F position
+    std::vector<char> seed_tight_;        ///< the seed's tight rows, flagged
     std::size_t refreshed_entries_ = 0;   ///< the factor's stored entries after the last refresh()
     mutable std::vector<double> rhs_;
 };

@@ -78,15 +78,14 @@ void FreeRowsFactor::compute_tight_product() {
 void FreeRowsFactor::load_seed(const EnvelopeFactor& seed) {
     const linalg::SkylineMatrix& L = *seed.L;
     const int n = lcp_->n();
-    position_.assign(static_cast<std::size_t>(n), 0);
-    for (int i : *seed.tight_rows) position_[i] = -1;
+    position_.assign(static_cast<std::size_t>(n), -1);
     members_.clear();
     for (int i = 0; i < n; ++i) {
-        if (position_[i] < 0) continue;
+        if (seed_tight_[i]) continue;
         position_[i] = static_cast<int>(members_.size());
         members_.push_back(i);
     }
-    std::vector<int>& first = refresh_rows_;  // scratch here: F's first recorded column of each member row
+    std::vector<int>& first = seed_first_;
     first.resize(members_.size());
     for (std::size_t p = 0; p < members_.size(); ++p) {
         const int i = members_[p];

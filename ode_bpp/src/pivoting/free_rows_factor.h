@@ -62,7 +62,8 @@ private:
     void drop(int p);                       ///< the member at position p leaves F (factor and members only)
     void take_tight_values(const std::vector<RowState>& states, const std::vector<double>& x);
     void compute_tight_product();           ///< tight_product_ from tight_x_
-    void load_seed(const EnvelopeFactor& seed);  ///< F = F_s with the seed's L_FF (reset's seeded form)
+    /// F = F_s with the seed's L_FF (reset's seeded form); seed_tight_ flags the seed's tight rows.
+    void load_seed(const EnvelopeFactor& seed);
 
     const BoxedLcp* lcp_ = nullptr;
     linalg::IncrementalCholesky factor_;
@@ -74,6 +75,7 @@ private:
     std::vector<int> refresh_rows_;
     std::vector<double*> seed_rows_;      ///< load_seed's rows of L_FF, indexed by F position
     std::vector<char> seed_tight_;        ///< the seed's tight rows, flagged
+    std::vector<int> seed_first_;         ///< load_seed's first recorded column (F position) of each member row
     std::size_t refreshed_entries_ = 0;   ///< the factor's stored entries after the last refresh()
     mutable std::vector<double> rhs_;
 };

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <random>
 
 #include "linalg/cost_model.h"
@@ -89,6 +90,11 @@ TEST(PivotingOrdering, FlaggedRowsBoundTheFactorFromBelow) {
         EXPECT_LE(flagged_rows_factor_bound(A, perm, some), flagged_rows_factor_bound(A, perm, all)) << trial;
         EXPECT_LE(flagged_rows_factor_bound(A, perm, all), whole) << trial;
         EXPECT_GE(flagged_rows_factor_bound(A, perm, all), static_cast<double>(envelope(A, perm))) << trial;
+        // summed only until a limit, it stops at or past it and stays a lower bound
+        const double full = flagged_rows_factor_bound(A, perm, all);
+        const double limited = flagged_rows_factor_bound(A, perm, all, full / 3);
+        EXPECT_GE(limited, full / 3) << trial;
+        EXPECT_LT(limited, full) << trial;
     }
 }
 
@@ -129,6 +135,36 @@ TEST(PivotingOrdering, FrozenFirstSolveChoiceIsNeverPricedAboveTheCandidates) {
                                                   static_cast<const std::vector<char>*>(&friction)})
                 EXPECT_LE(price, warm_solve_price(A, order(p, kind, last), none, friction)) << links << " links";
     }
+}
+
+/// An island too small to pay for an ordering keeps the caller's order, or that order with the
+/// friction rows last (Frozen friction's first solve holds them at 0), whichever prices lower:
+/// ODE lists a contact's rows together after the joints, and a short chain with many ground
+/// contacts factors its joints once for both solves with the friction rows last, while a long
+/// chain with few contacts pays more for the rows they make reach the bottom.
+TEST(PivotingOrdering, ASmallIslandMovesItsFrictionRowsLastWhereThatPricesLower) {
+    int moved_taken = 0, caller_kept = 0;
+    for (const auto& [links, contacts] : {std::pair{4, 12}, std::pair{12, 4}, std::pair{3, 20}, std::pair{8, 8}}) {
+        const auto owned = problems::chain_mlcp(links, contacts);
+        const Problem p = owned.view();
+        const linalg::SymmetricRows A(p, {});
+        std::vector<char> friction(p.n, 0), none(p.n, 0);
+        for (int i = 0; i < p.n; ++i) friction[i] = owned.findex[i] >= 0;
+        std::vector<int> caller(p.n), moved;
+        std::iota(caller.begin(), caller.end(), 0);
+        moved = caller;
+        move_flagged_last(moved, friction);
+        const std::vector<int> chosen = choose_ordering(Method::Bpp, p, A, {}, FirstSolve::FrictionRowsTight);
+        ASSERT_TRUE(chosen == caller || chosen == moved) << links << " links: too small to be numbered";
+        const std::vector<int>& other = chosen == caller ? moved : caller;
+        EXPECT_LE(warm_solve_price(A, chosen, none, friction), warm_solve_price(A, other, none, friction)) << links;
+        moved_taken += chosen == moved;
+        caller_kept += chosen == caller;
+        // without the first solve's friction rows there is nothing to move
+        EXPECT_EQ(choose_ordering(Method::Bpp, p, A, {}, FirstSolve::AsWarmStart), caller) << links << " links";
+    }
+    EXPECT_EQ(moved_taken, 2);
+    EXPECT_EQ(caller_kept, 2);
 }
 
 TEST(PivotingOrdering, FirstSolvePriceAddsTheFrictionRowsStepOnly) {

@@ -96,6 +96,27 @@ double price_in_shape(const linalg::SkylineShape& shape, const std::vector<int>&
     return factor + first + (kStepsPerWarmSolve - 1) * step;
 }
 
+/// The caller's own order, or that order with the first solve's tight rows moved last where
+/// that prices lower (warm_solve_price): numbering no graph, it costs O(entries of A) to price.
+/// ODE lists a contact's friction rows beside its normal; Frozen friction's first solve holds them
+/// at 0 and its second frees them, so with them last one factor of the leading rows serves both.
+std::vector<int> caller_order(const Problem& problem, const linalg::SymmetricRows& A,
+                              const std::vector<RowState>& warm_start, FirstSolve first) {
+    std::vector<int> best = identity(problem.n);
+    const std::vector<char> tight = warm_tight(warm_start);
+    const std::vector<char> first_tight = first_solve_tight(problem, tight, first);
+    if (first_tight.empty()) return best;
+    std::vector<int> moved = best;
+    ordering::move_flagged_last(moved, first_tight);
+    if (moved == best) return best;
+    const double own_price = price_in_shape(linalg::SkylineShape::from_row_profile(A.row_profile()), best, tight, first_tight);
+    // where the moved rows alone make its factor dearer (a box stack's contacts: 100 times), a
+    // few of them say so without pricing the whole shape
+    if (kRefactorUnit * flagged_rows_factor_bound(A, moved, first_tight, own_price / kRefactorUnit) >= own_price)
+        return best;
+    return warm_solve_price(A, moved, tight, first_tight) < own_price ? moved : best;
+}
+
 }  // namespace
 
 double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight,
@@ -104,7 +125,7 @@ double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& 
 }
 
 double flagged_rows_factor_bound(const linalg::SymmetricRows& A, const std::vector<int>& perm,
-                                 const std::vector<char>& rows) {
+                                 const std::vector<char>& rows, double limit) {
     // row i of width w = i - first[i] + 1 is one of the rows r summed over for every pair
     // first[i] <= j <= k <= i: column j reaches row i (sky[j] >= i), so it holds w (w + 1) / 2
     // of refactor_cost(0)'s terms
@@ -114,6 +135,7 @@ double flagged_rows_factor_bound(const linalg::SymmetricRows& A, const std::vect
         if (!rows[perm[i]]) continue;
         const double width = i - A.first_under(perm[i], to_new) + 1;
         bound += width * (width + 1) / 2;
+        if (bound >= limit) break;
     }
     return bound;
 }
@@ -122,7 +144,7 @@ std::vector<int> choose_ordering(Method method, const Problem& problem, const li
                                  const std::vector<RowState>& warm_start, FirstSolve first) {
     if (method == Method::BppSky) return order_pair(problem, A).forward;
     if (method != Method::Bpp) return identity(problem.n);
-    if (ordering_cannot_pay(A)) return identity(problem.n);
+    if (ordering_cannot_pay(A)) return caller_order(problem, A, warm_start, first);
     const ordering::OrderPair pair = order_pair(problem, A);
     const std::vector<int>& cm = pair.forward;
     const std::vector<int>& rcm = pair.reverse;
@@ -145,7 +167,8 @@ std::vector<int> choose_ordering(Method method, const Problem& problem, const li
             // its factorization alone, price_in_shape's first term, already prices most candidates
             // out (on the winch and the forwarder, 100 % and 87 %): bound it from the moved rows,
             // then from the whole shape, before building a cost model
-            if (kRefactorUnit * flagged_rows_factor_bound(A, candidate, *moved) >= best_price) continue;
+            if (kRefactorUnit * flagged_rows_factor_bound(A, candidate, *moved, best_price / kRefactorUnit) >= best_price)
+                continue;
             const linalg::SkylineShape shape = linalg::SkylineShape::from_row_profile(A.row_profile_under(candidate));
             if (kRefactorUnit * linalg::full_refactor_cost(shape) >= best_price) continue;
             const double price = price_in_shape(shape, candidate, tight, first_tight);

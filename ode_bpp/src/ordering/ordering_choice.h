@@ -1,6 +1,7 @@
 // Which symmetric permutation each BPP method factors in (paper Sec. 3.4 and our variant).
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "ode_bpp/solver.h"
@@ -18,8 +19,9 @@ enum class FirstSolve {
 /// perm[new] = old (n entries) for the method:
 ///  - BppChol, BppDown: the identity (Alg. 1 and Alg. 2 without skyline use no ordering);
 ///  - BppSky: Cuthill-McKee over the constraint graph (Sec. 3.4);
-///  - Bpp: the identity wherever factoring in it costs less than computing an ordering (small
-///    islands); else the one of Cuthill-McKee and reverse Cuthill-McKee with the smaller
+///  - Bpp: the caller's order wherever factoring in it costs less than computing an ordering
+///    (small islands), or, with `first`'s rows to hold, that order with them moved last where
+///    that prices lower (warm_solve_price); else the one of Cuthill-McKee and reverse Cuthill-McKee with the smaller
 ///    envelope; where rows are expected tight (the warm start's, original space, n entries or
 ///    empty, and those of `first`), also both orders with those rows moved last (where deleting
 ///    or refactoring them touches the fewest columns), and the lowest warm_solve_price wins
@@ -43,8 +45,10 @@ double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& 
 
 /// A lower bound of linalg::full_refactor_cost in the shape of A under perm (perm[new] = old),
 /// from the rows flagged in `rows` (original space, n flags) alone: O(n + their entries), where
-/// the whole shape costs O(entries of A). Each flagged row of width w adds w (w + 1) / 2.
+/// the whole shape costs O(entries of A). Each flagged row of width w adds w (w + 1) / 2, in the
+/// order of perm, until the sum reaches `limit` (what it returns then is still a lower bound).
 double flagged_rows_factor_bound(const linalg::SymmetricRows& A, const std::vector<int>& perm,
-                                 const std::vector<char>& rows);
+                                 const std::vector<char>& rows,
+                                 double limit = std::numeric_limits<double>::infinity());
 
 }  // namespace ode_bpp::ordering

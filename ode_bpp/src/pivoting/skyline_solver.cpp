@@ -39,8 +39,9 @@ struct SkylineStorage {
     std::vector<int> profile, new_profile;
     SkylineShape shape;
     std::optional<linalg::CostModel> cost;
-    SkylineMatrix A_env, L0, L;
+    SkylineMatrix A_env, L0, L;  ///< A_env: Ap + shift I, loaded only where L0 no longer holds it
     std::vector<int> dirty_rows;  ///< rows of L that differ from L0 before SkylineSolver::dirty_from_
+    bool needed_a_env = false;    ///< the latest prepare refactored from a column L0 had factored
     std::vector<int> tight_rows;
     std::vector<double> work;
 
@@ -80,8 +81,8 @@ public:
     /// never factored, and a breakdown in them shows where a step needs the column (solve_free's
     /// Breakdown) or not at all.
     bool prepare(double shift) override {
-        load_matrix(shift);
-        s_.L0 = s_.A_env;
+        shift_ = shift;
+        load_l0();
         l0_columns_ = 0;
         l0_broken_ = false;
         if (variant_ != SkylineVariant::CostModel && !factor_l0_through(s_.shape.n)) return false;
@@ -132,19 +133,25 @@ public:
         std::vector<double> work;
         for (int i = 0; i < s_.shape.n; ++i)
             if (tight[i]) linalg::skyline_delete_row(deleted, i, work);
-        SkylineMatrix fresh = s_.A_env;
+        SkylineMatrix fresh(s_.shape);
+        load_columns(fresh, 0);
         if (linalg::skyline_cholesky(fresh, 0, tight) >= 0) return std::numeric_limits<double>::quiet_NaN();
         return linalg::factor_error(deleted, fresh, tight);
     }
 
 private:
-    /// s_.A_env = Ap + shift I in the skyline shape (entries outside Ap's pattern stay 0).
-    void load_matrix(double shift) {
-        s_.A_env.reset(s_.shape);
-        for (int i = 0; i < A_.n(); ++i) {
-            s_.A_env.at(i, i) = A_.diag(i) + shift;
-            for (int k = A_.row_begin(i); k < A_.row_end(i); ++k)
-                if (A_.col(k) < i) s_.A_env.at(i, A_.col(k)) = A_.val(k);
+    /// Columns k0 .. n-1 of M (shape s_.shape) = those of Ap + shift_ I, entries outside Ap's
+    /// pattern 0. Column k of the lower triangle is row k of Ap from its diagonal on (A_ stores
+    /// both triangles), so each column is written in one contiguous pass. L0 is loaded so, not
+    /// copied from a loaded A_env: a warm step that deletes rows, or none, never reads A_env.
+    void load_columns(SkylineMatrix& M, int k0) const {
+        if (k0 >= A_.n()) return;
+        std::fill(M.column(k0), M.values().data() + s_.shape.size(), 0.0);
+        for (int k = k0; k < A_.n(); ++k) {
+            double* column = M.column(k);
+            column[0] = A_.diag(k) + shift_;
+            for (int e = A_.row_begin(k); e < A_.row_end(k); ++e)
+                if (A_.col(e) > k) column[A_.col(e) - k] = A_.val(e);
         }
     }
 
@@ -192,17 +199,51 @@ private:
     }
 
     /// L's columns < k0 = min T from L0 (the factor of the leading block is unchanged), columns
-    /// >= k0 from Ap, then Cholesky from k0 with the tight rows removed.
+    /// >= k0 loaded from Ap, then Cholesky from k0 with the tight rows removed.
     FactorOutcome refactor_tail(const std::vector<char>& tight) {
         const int k0 = s_.tight_rows.front();
         if (!factor_l0_through(k0)) return FactorOutcome::Breakdown;
         const int from = copy_from();
         copy_columns(s_.L0, from, k0);
         s_.L.copy_rows_from(s_.L0, s_.dirty_rows, from);
-        s_.L.copy_tail_from(s_.A_env, k0);
+        restore_tail_of_ap(k0);
         mark_dirty();
         if (linalg::skyline_cholesky(s_.L, k0, tight) >= 0) return FactorOutcome::Breakdown;
         return FactorOutcome::Refactored;
+    }
+
+    /// L's columns >= k0 = Ap + shift_ I. L0 is factored lazily, and its columns from
+    /// l0_columns_ on still hold Ap + shift_ I: a refactorization from there (the usual one, right
+    /// after factor_l0_through(k0)) copies them; one from an earlier column, after a step that
+    /// needed more of L0, copies them from A_env, loaded at the first such need.
+    void restore_tail_of_ap(int k0) {
+        if (k0 >= l0_columns_) {
+            s_.L.copy_tail_from(s_.L0, k0);
+            return;
+        }
+        if (!a_env_loaded_) {
+            s_.A_env.reshape(s_.shape);
+            load_columns(s_.A_env, 0);
+            a_env_loaded_ = true;
+        }
+        s_.needed_a_env = true;
+        s_.L.copy_tail_from(s_.A_env, k0);
+    }
+
+    /// L0 = Ap + shift_ I, unfactored. Loaded straight from Ap, unless the previous prepare of
+    /// these buffers (as a rule the same island one step earlier) came to need A_env: then A_env
+    /// is loaded and L0 copied from it, a copy costing less than a second load.
+    void load_l0() {
+        s_.L0.reshape(s_.shape);
+        a_env_loaded_ = s_.needed_a_env;
+        s_.needed_a_env = false;
+        if (!a_env_loaded_) {
+            load_columns(s_.L0, 0);
+            return;
+        }
+        s_.A_env.reshape(s_.shape);
+        load_columns(s_.A_env, 0);
+        s_.L0.copy_tail_from(s_.A_env, 0);
     }
 
 #ifndef NDEBUG
@@ -252,6 +293,8 @@ private:
     /// The buffers: shape, cost model, A's envelope, L0, the working factor L and scratch.
     SkylineStorage& s_;
     int dirty_from_ = 0;
+    double shift_ = 0;      ///< of the latest prepare: L0 and every refactored tail factor Ap + shift_ I
+    bool a_env_loaded_ = false;  ///< s_.A_env holds Ap + shift_ I (restore_tail_of_ap)
     int l0_columns_ = 0;    ///< L0's columns factored so far (prepare: none; factor_l0_through)
     bool l0_broken_ = false;  ///< L0's column l0_columns_ broke down (factor_l0_through)
     bool l_unset_ = false;  ///< L holds no values since prepare (copy_from)

@@ -70,6 +70,9 @@ std::vector<std::vector<char>> tight_set_sequence(int n, std::uint64_t seed) {
         for (int i = 0; i < n; ++i) tight[i] = (rng() % 1000) < share * 1000;
         sets.push_back(tight);
     }
+    std::vector<char> tail(n, 0);  // every row from 2n/3 on: Bpp solves with L0's leading block
+    for (int i = 2 * n / 3; i < n; ++i) tail[i] = 1;
+    sets.push_back(tail);
     std::vector<char> last_only(n, 0);
     last_only[n - 1] = 1;
     sets.push_back(last_only);
@@ -192,12 +195,46 @@ TEST(PivotingCostModel, DeletesFewLateRowsAndRefactorsManyEarlyOnes) {
     ASSERT_TRUE(solver->prepare(0));
     const int n = pp.Ap.n();
     std::vector<double> x(n, 1.0);
-    std::vector<char> last(n, 0);
-    last[n - 1] = 1;
-    EXPECT_EQ(solver->solve_free(last, x, false), FactorOutcome::Deleted);
+    std::vector<char> late(n, 0);  // one late row, not the last (a tight tail is not deleted at all)
+    late[n - 2] = 1;
+    EXPECT_EQ(solver->solve_free(late, x, false), FactorOutcome::Deleted);
     std::vector<char> many(n, 0);
     for (int i = 0; i < n; i += 2) many[i] = 1;
     EXPECT_EQ(solver->solve_free(many, x, false), FactorOutcome::Refactored);
+}
+
+/// Where T is every row from k0 on, L_FF is L0's leading block: Bpp factors L0 through k0 alone
+/// and solves with that block (skyline_solve_leading), so the tight rows' own columns are never
+/// factored. An A whose last diagonal makes it indefinite shows it: deleting the last row from
+/// L0 would need L0's last column and break down, the leading block does not.
+TEST(PivotingCostModel, ATightTailIsSolvedWithL0sLeadingBlock) {
+    auto owned = problems::chain_mlcp(8, 4);
+    const int n = owned.n;
+    owned.a(n - 1, n - 1) = -1.0;
+    const linalg::SymmetricRows A(owned.view(), {});
+    const Eigen::MatrixXd M = dense(A);
+    std::vector<double> rhs(n);
+    for (int i = 0; i < n; ++i) rhs[i] = std::cos(0.3 * i);
+    for (int k0 : {n - 1, n / 2}) {
+        StrategyBuffers buffers;
+        auto solver = make_free_solver(Method::Bpp, A, buffers);
+        ASSERT_TRUE(solver->prepare(0));
+        std::vector<char> tail(n, 0);
+        for (int i = k0; i < n; ++i) tail[i] = 1;
+        std::vector<double> x = rhs;
+        ASSERT_EQ(solver->solve_free(tail, x, false), FactorOutcome::Refactored) << k0;
+        const Eigen::VectorXd expected = M.topLeftCorner(k0, k0).llt().solve(Eigen::Map<const Eigen::VectorXd>(rhs.data(), k0));
+        for (int i = 0; i < n; ++i) EXPECT_NEAR(x[i], i < k0 ? expected[i] : 0.0, 1e-9 * (1 + std::abs(expected[0]))) << i;
+        // the same block answers another right-hand side
+        std::vector<double> again(n, 1.0);
+        solver->solve_again(again);
+        const Eigen::VectorXd ones = M.topLeftCorner(k0, k0).llt().solve(Eigen::VectorXd::Ones(k0));
+        for (int i = 0; i < n; ++i) EXPECT_NEAR(again[i], i < k0 ? ones[i] : 0.0, 1e-9 * (1 + ones.cwiseAbs().maxCoeff())) << i;
+        // a step that needs all of L0 still meets the indefinite last column
+        std::vector<char> none(n, 0);
+        x = rhs;
+        EXPECT_EQ(solver->solve_free(none, x, false), FactorOutcome::Breakdown) << k0;
+    }
 }
 
 TEST(PivotingCostModel, PaperVariantsAlwaysDelete) {

@@ -20,8 +20,10 @@ enum class FactorOutcome {
 };
 
 /// The factor of a strategy's latest successful solve_free, where it keeps one on the envelope:
-/// L of Ap + shift I in skyline storage with every tight row and column replaced by the identity
-/// (row_delete.h, skyline_cholesky.h's removed rows), so that L_FF is L on the free rows.
+/// L of Ap + shift I in skyline storage whose entries on the free rows and columns are L_FF. Its
+/// tight rows and columns are the identity (row_delete.h, skyline_cholesky.h's removed rows), or,
+/// where T is every row from some k0 on, not factored at all (L0 through column k0): read only
+/// the free ones.
 struct EnvelopeFactor {
     const linalg::SkylineMatrix* L = nullptr;   ///< null: none kept
     const std::vector<int>* tight_rows = nullptr;  ///< T, ascending

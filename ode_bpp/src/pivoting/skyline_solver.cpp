@@ -101,9 +101,13 @@ public:
         for (int i : s_.tight_rows) x[i] = 0;
         if (s_.tight_rows.empty()) {  // L_FF = L0 itself, a fresh factor
             if (!factor_l0_through(s_.shape.n)) return breakdown();
-            last_factor_ = &s_.L0;
-            linalg::skyline_solve(s_.L0, x.data());
-            return FactorOutcome::Refactored;
+            return solve_with_l0(s_.shape.n, x);
+        }
+        // T = {k0 .. n-1} (Frozen friction's first solve with the friction rows ordered last): L_FF
+        // is L0's leading block, factored through k0 alone, and nothing is copied
+        if (variant_ == SkylineVariant::CostModel && tight_is_the_tail()) {
+            if (!factor_l0_through(s_.tight_rows.front())) return breakdown();
+            return solve_with_l0(s_.tight_rows.front(), x);
         }
         FactorOutcome outcome = fresh || prefers_refactor() ? refactor_tail(tight) : delete_rows();
         // A refactor the cost model chose may meet a pivot that deletion (a rank-1 update,
@@ -111,13 +115,14 @@ public:
         if (outcome == FactorOutcome::Breakdown && !fresh) outcome = delete_rows();
         if (outcome == FactorOutcome::Breakdown) return breakdown();
         last_factor_ = &s_.L;
+        last_rows_ = s_.shape.n;
         linalg::skyline_solve(s_.L, x.data());
         return outcome;
     }
 
     void solve_again(std::vector<double>& x) override {
         for (int i : s_.tight_rows) x[i] = 0;
-        if (last_factor_ != nullptr) linalg::skyline_solve(*last_factor_, x.data());
+        if (last_factor_ != nullptr) linalg::skyline_solve_leading(*last_factor_, last_rows_, x.data());
     }
 
     EnvelopeFactor latest_factor() const override {
@@ -153,6 +158,19 @@ private:
             for (int e = A_.row_begin(k); e < A_.row_end(k); ++e)
                 if (A_.col(e) > k) column[A_.col(e) - k] = A_.val(e);
         }
+    }
+
+    /// L_FF = L0's leading k1 x k1 block, factored: x_F from it (x's tight rows are 0 already).
+    FactorOutcome solve_with_l0(int k1, std::vector<double>& x) {
+        last_factor_ = &s_.L0;
+        last_rows_ = k1;
+        linalg::skyline_solve_leading(s_.L0, k1, x.data());
+        return FactorOutcome::Refactored;
+    }
+
+    /// T is every row from its first on (s_.tight_rows ascending, distinct, non-empty).
+    bool tight_is_the_tail() const {
+        return static_cast<int>(s_.tight_rows.size()) == s_.shape.n - s_.tight_rows.front();
     }
 
     void collect_tight(const std::vector<char>& tight) {
@@ -299,6 +317,7 @@ private:
     bool l0_broken_ = false;  ///< L0's column l0_columns_ broke down (factor_l0_through)
     bool l_unset_ = false;  ///< L holds no values since prepare (copy_from)
     const SkylineMatrix* last_factor_ = nullptr;  ///< L_FF of the latest successful solve_free
+    int last_rows_ = 0;  ///< its leading rows that hold L_FF (the rest: tight rows, not factored in L0)
 };
 
 }  // namespace

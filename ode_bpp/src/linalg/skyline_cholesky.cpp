@@ -126,6 +126,7 @@ void subtract_group(double* target, SourceGroup& g) {
 void subtract_earlier_columns(SkylineMatrix& L, int k, int j_first) {
     double* target = L.column(k);
     SourceGroup group;
+    int size = 0;  // group.size, in a register: through memory each member waited on the last one's store
     for (int j = j_first; j < k; ++j) {
         const double* source = L.column(j) + (k - j);
         if (source[0] == 0.0) continue;
@@ -134,11 +135,16 @@ void subtract_earlier_columns(SkylineMatrix& L, int k, int j_first) {
             subtract_scaled(target, source, source[0], length);
             continue;
         }
-        group.source[group.size] = source;
-        group.l[group.size] = source[0];
-        group.length[group.size] = length;
-        if (++group.size == kGroup) subtract_group(target, group);
+        group.source[size] = source;
+        group.l[size] = source[0];
+        group.length[size] = length;
+        if (++size == kGroup) {
+            group.size = size;
+            subtract_group(target, group);
+            size = 0;
+        }
     }
+    group.size = size;
     subtract_group(target, group);
 }
 

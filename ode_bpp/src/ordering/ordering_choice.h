@@ -21,8 +21,8 @@ enum class FirstSolve {
 ///  - BppSky: Cuthill-McKee over the constraint graph (Sec. 3.4);
 ///  - Bpp: the caller's order wherever factoring in it costs less than computing an ordering
 ///    (small islands), or, with `first`'s rows to hold, that order with them moved last where
-///    that prices lower (warm_solve_price); else the one of Cuthill-McKee and reverse Cuthill-McKee with the smaller
-///    envelope; where rows are expected tight (the warm start's, original space, n entries or
+///    that prices lower (warm_solve_price); else reverse Cuthill-McKee, whose envelope is never
+///    larger than Cuthill-McKee's (Liu & Sherman); where rows are expected tight (the warm start's, original space, n entries or
 ///    empty, and those of `first`), also both orders with those rows moved last (where deleting
 ///    or refactoring them touches the fewest columns), and the lowest warm_solve_price wins
 ///    (moving them can widen the envelope more than it saves). A candidate whose factorization

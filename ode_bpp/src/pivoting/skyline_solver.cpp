@@ -233,7 +233,9 @@ private:
     /// L's columns >= k0 = Ap + shift_ I. L0 is factored lazily, and its columns from
     /// l0_columns_ on still hold Ap + shift_ I: a refactorization from there (the usual one, right
     /// after factor_l0_through(k0)) copies them; one from an earlier column, after a step that
-    /// needed more of L0, copies them from A_env, loaded at the first such need.
+    /// needed more of L0, copies them from A_env, loaded at the first such need. (Where L0 broke
+    /// down, its column l0_columns_ holds partial values; a refactorization from it has k0 = min T
+    /// there, which skyline_cholesky makes an identity column before reading anything of it.)
     void restore_tail_of_ap(int k0) {
         if (k0 >= l0_columns_) {
             s_.L.copy_tail_from(s_.L0, k0);

@@ -4,7 +4,6 @@
 #include <numeric>
 
 #include "linalg/cost_model.h"
-#include "linalg/envelope.h"
 #include "linalg/skyline.h"
 #include "ordering/graph.h"
 #include "ordering/order_rows.h"
@@ -96,6 +95,14 @@ double price_in_shape(const linalg::SkylineShape& shape, const std::vector<int>&
     return factor + first + (kStepsPerWarmSolve - 1) * step;
 }
 
+/// True when the rows `moved` (original space) alone, where perm puts them, make the factor cost
+/// at least `price` (flagged_rows_factor_bound, summed no further than that): the candidate
+/// cannot win and is not priced in full.
+bool priced_out_by_moved_rows(const linalg::SymmetricRows& A, const std::vector<int>& perm,
+                              const std::vector<char>& moved, double price) {
+    return kRefactorUnit * flagged_rows_factor_bound(A, perm, moved, price / kRefactorUnit) >= price;
+}
+
 /// The caller's own order, or that order with the first solve's tight rows moved last where
 /// that prices lower (warm_solve_price): numbering no graph, it costs O(entries of A) to price.
 /// ODE lists a contact's friction rows beside its normal; Frozen friction's first solve holds them
@@ -112,8 +119,7 @@ std::vector<int> caller_order(const Problem& problem, const linalg::SymmetricRow
     const double own_price = price_in_shape(linalg::SkylineShape::from_row_profile(A.row_profile()), best, tight, first_tight);
     // where the moved rows alone make its factor dearer (a box stack's contacts: 100 times), a
     // few of them say so without pricing the whole shape
-    if (kRefactorUnit * flagged_rows_factor_bound(A, moved, first_tight, own_price / kRefactorUnit) >= own_price)
-        return best;
+    if (priced_out_by_moved_rows(A, moved, first_tight, own_price)) return best;
     return warm_solve_price(A, moved, tight, first_tight) < own_price ? moved : best;
 }
 
@@ -166,8 +172,7 @@ std::vector<int> choose_ordering(Method method, const Problem& problem, const li
             // its factorization alone, price_in_shape's first term, already prices most candidates
             // out (on the winch and the forwarder, 100 % and 87 %): bound it from the moved rows,
             // then from the whole shape, before building a cost model
-            if (kRefactorUnit * flagged_rows_factor_bound(A, candidate, *moved, best_price / kRefactorUnit) >= best_price)
-                continue;
+            if (priced_out_by_moved_rows(A, candidate, *moved, best_price)) continue;
             const linalg::SkylineShape shape = linalg::SkylineShape::from_row_profile(A.row_profile_under(candidate));
             if (kRefactorUnit * linalg::full_refactor_cost(shape) >= best_price) continue;
             const double price = price_in_shape(shape, candidate, tight, first_tight);

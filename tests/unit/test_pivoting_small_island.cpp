@@ -36,6 +36,8 @@ TEST(SmallIsland, TakesOnlyFrozenBppIslandsInTheDenseFormUpToTheThreshold) {
     const auto p = problems::random_boxed_mlcp(12, 2, 2, 1e4, 7);
     Options o;
     EXPECT_TRUE(pivoting::takes_small_island(p.view(), o));
+    o.tuning.dense_island_rows = 12;
+    EXPECT_TRUE(pivoting::takes_small_island(p.view(), o));
     o.tuning.dense_island_rows = 11;
     EXPECT_FALSE(pivoting::takes_small_island(p.view(), o));
     o = {};
@@ -55,7 +57,9 @@ TEST(SmallIsland, AgreesWithTheGeneralDriver) {
             const int contacts = n / 6;
             const auto p = problems::random_boxed_mlcp(n, n / 5, contacts, 1e6, 100 * n + seed);
             std::vector<double> small, general;
-            const Result a = run(p, small);
+            Options on_the_small_path;
+            on_the_small_path.tuning.dense_island_rows = 32;  // the path works at any threshold
+            const Result a = run(p, small, on_the_small_path);
             const Result b = run_general(p, general);
             ASSERT_EQ(b.status, Status::Converged) << n << " " << seed << ": " << b.message;
             ASSERT_EQ(a.status, Status::Converged) << n << " " << seed << ": " << a.message;

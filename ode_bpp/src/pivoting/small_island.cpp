@@ -285,8 +285,8 @@ bool takes_small_island(const Problem& problem, const Options& options) {
 bool solve_small_island(const Problem& problem, const Options& options, const Start& start, SmallIslandBuffers& ws,
                         std::vector<double>& x, Result& r) {
     std::vector<RowState>& states = r.states;
-    states.assign(static_cast<std::size_t>(problem.n), RowState::Free);
-    if (!start.states.empty()) states.assign(start.states.begin(), start.states.end());
+    if (start.states.empty()) states.assign(static_cast<std::size_t>(problem.n), RowState::Free);
+    else states.assign(start.states.begin(), start.states.end());
     x.assign(static_cast<std::size_t>(problem.n), 0.0);
     if (!SmallIsland(problem, options, ws, r).solve(states, x)) return false;
     // an answer that overflowed (finite but huge entries of A) is the general chain's to handle

@@ -23,7 +23,7 @@ constexpr int kPlainLoopsUpTo = 32;
 /// Buffers kept by the caller (DenseRefactorBuffers) so that their capacity outlives one solve
 /// (allocation dominated small islands). One solver object per buffers at a time.
 struct DenseWorkspace {
-    std::vector<double> store, rhs, diagonal;
+    std::vector<double> store, rhs, diagonal, inverse_diagonal;  ///< inverse_diagonal: 1 / L(k,k)
     std::vector<int> free, position;
 };
 
@@ -31,6 +31,7 @@ DenseWorkspace& sized_workspace(DenseWorkspace& w, int n) {
     w.store.resize(static_cast<std::size_t>(n) * n);
     w.rhs.resize(static_cast<std::size_t>(n));
     w.diagonal.resize(static_cast<std::size_t>(n));
+    w.inverse_diagonal.resize(static_cast<std::size_t>(n));
     w.position.assign(static_cast<std::size_t>(n), -1);
     w.free.clear();
     return w;
@@ -68,7 +69,8 @@ private:
     /// L_FF L_FF^T = A_FF, in place in the leading |F| x |F| block of store. Row-major lower
     /// is column-major upper: Eigen's LLT<Upper> writes U = L^T where L belongs.
     bool factor(int nf) {
-        if (nf <= kPlainLoopsUpTo) return linalg::dense_cholesky(ws_.store.data(), nf, A_.n(), ws_.diagonal.data()) < 0;
+        if (nf <= kPlainLoopsUpTo)
+            return linalg::dense_cholesky(ws_.store.data(), nf, A_.n(), ws_.diagonal.data(), ws_.inverse_diagonal.data()) < 0;
         Eigen::Map<Eigen::MatrixXd> store(ws_.store.data(), A_.n(), A_.n());
         Eigen::Ref<Eigen::MatrixXd> leading = store.topLeftCorner(nf, nf);
         const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Upper> llt(leading);
@@ -76,6 +78,7 @@ private:
         for (int k = 0; k < nf; ++k) {
             const double l = leading(k, k);
             if (linalg::pivot_breaks_down(l * l, ws_.diagonal[k])) return false;
+            ws_.inverse_diagonal[k] = 1.0 / l;
         }
         return true;
     }
@@ -86,7 +89,7 @@ private:
         const int nf = static_cast<int>(free.size());
         double* rhs = ws_.rhs.data();
         for (int k = 0; k < nf; ++k) rhs[k] = x[free[k]];
-        linalg::dense_cholesky_solve(ws_.store.data(), nf, A_.n(), rhs);
+        linalg::dense_cholesky_solve(ws_.store.data(), ws_.inverse_diagonal.data(), nf, A_.n(), rhs);
         for (int k = 0; k < nf; ++k) x[free[k]] = rhs[k];
     }
 

@@ -44,6 +44,7 @@ bool solve_free_rows(const Problem& p, int nf, SmallIslandBuffers& ws, std::vect
     const int* free = ws.free.data();
     double* a = ws.factor.data();
     double* y = ws.rhs.data();
+    double* inverse_diagonal = ws.inverse_diagonal.data();
     for (int k = 0; k < nf; ++k) {
         const int i = free[k];
         const double* a_i = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
@@ -55,10 +56,10 @@ bool solve_free_rows(const Problem& p, int nf, SmallIslandBuffers& ws, std::vect
         double* row = a + static_cast<std::ptrdiff_t>(k) * n;
         for (int l = 0; l < k; ++l) row[l] = a_i[free[l]];
         row[k] = a_i[i];
-        if (!linalg::dense_cholesky_row(a, k, n, a_i[i])) return false;
-        linalg::dense_forward_entry(a, k, n, y);
+        if (!linalg::dense_cholesky_row(a, k, n, a_i[i], inverse_diagonal)) return false;
+        linalg::dense_forward_entry(a, inverse_diagonal, k, n, y);
     }
-    linalg::dense_backward_solve(a, nf, n, y);
+    linalg::dense_backward_solve(a, inverse_diagonal, nf, n, y);
     for (int k = 0; k < nf; ++k) x[free[k]] = y[k];
     return true;
 }
@@ -74,7 +75,7 @@ class SmallIsland {
 public:
     SmallIsland(const Problem& p, const Options& o, SmallIslandBuffers& ws, Result& r) : p_(p), o_(o), ws_(ws), r_(r), n_(p.n) {
         at_least(ws_.factor, static_cast<std::size_t>(n_) * n_);
-        for (auto* v : {&ws_.rhs, &ws_.w, &ws_.scale, &ws_.lo, &ws_.hi}) at_least(*v, static_cast<std::size_t>(n_));
+        for (auto* v : {&ws_.rhs, &ws_.inverse_diagonal, &ws_.w, &ws_.scale, &ws_.lo, &ws_.hi}) at_least(*v, static_cast<std::size_t>(n_));
         at_least(ws_.free, static_cast<std::size_t>(n_));
     }
 

@@ -27,7 +27,7 @@ namespace ode_bpp::pivoting {
 /// n entries may hold more (they only grow); entries from n on mean nothing.
 struct SmallIslandBuffers {
     std::vector<double> factor;   ///< n x n, row stride n: A_FF, then L_FF, in its leading block
-    std::vector<double> rhs, lo, hi, w, scale;
+    std::vector<double> rhs, inverse_diagonal, lo, hi, w, scale;  ///< inverse_diagonal: 1 / L_FF(k,k)
     std::vector<int> free;
     std::vector<RowState> requested, best_states, trial, kept_states;
     std::vector<double> kept_x, kept_w, kept_scale;

@@ -101,29 +101,21 @@ const PileScene kScenes[] = {
 };
 
 /// The islands that do not certify yet although cond(A) is within double precision
-/// (docs/benchmarks.md): a pile island of the bin (rows 0: the step's island of at least
-/// min_rows / 2 rows), where Lemke's path runs out of its budget or passes a nearly singular basis
-/// first. The bin's trajectory depends on bpp's rounding, so its islands change with the
-/// factorization's arithmetic: step 270's 576-row island certified for a while, and since the
-/// column updates are grouped (linalg/skyline_cholesky.cpp) the scene reached a different one
-/// there, which the earlier code did not certify either (relative residual 2.7, Lemke out of
-/// pivots); since a tight tail is solved with L0's leading block (linalg/skyline_solve.h) the
-/// scene reached yet another island at step 270, which certified; since the small islands'
-/// dense Cholesky multiplies by reciprocal pivots (linalg/dense_cholesky.h), a 546-row island
-/// there, whose Lemke path needs more than its 50,000 pivots (with ten times the budget it
-/// certifies after 32 s). (A 69-row rock pile island at step 45 was listed while the outer friction rounds' answer
-/// stood uncertified: a friction impulse above mu times its normal by 5.2e-7, relative residual
-/// 2.4e-8; a linked solve from that answer now certifies it at 7.8e-15, friction_policy.cpp.)
-/// (The pyramid's 930-row island at step 60, reached since A keeps its structural zeros
-/// (ode/assemble.h), converged with friction rows at their bounds whose w had the wrong sign by
-/// 1-5e-7 against impulses of 14-70: within the row-scaled tolerance, 4.7e-8 relative to |b|; a
-/// second solve at a hundredth of the tolerance now certifies it at 4.4e-10, solver.cpp's polish.)
+/// (docs/benchmarks.md, "Certified answers on the piles"): a pile island of the bin (rows 0: the
+/// step's island of at least min_rows / 2 rows), where Lemke's path runs out of its budget or
+/// passes a nearly singular basis first. The bin's trajectory depends on bpp's rounding, so the
+/// island it reaches at a given step changes with the factorization's arithmetic: step 270's has
+/// been open and certified by turns, and the docs record each change. (A 69-row rock pile island
+/// at step 45 was listed while the outer friction rounds' answer stood uncertified; a linked solve
+/// from that answer now certifies it at 7.8e-15, friction_policy.cpp. The pyramid's 930-row island
+/// at step 60 converged within the row-scaled tolerance but 4.7e-8 relative to |b|; a second
+/// solve at a hundredth of the tolerance now certifies it at 4.4e-10, solver.cpp's polish.)
 struct OpenIsland {
     std::string scene;
     long step;
     int rows;
 };
-const OpenIsland kOpen[] = {{"bin", 150, 0}, {"bin", 270, 0}};
+const OpenIsland kOpen[] = {{"bin", 150, 0}};
 
 bool is_open(const std::string& scene, long step, int rows, int min_rows) {
     for (const OpenIsland& o : kOpen)

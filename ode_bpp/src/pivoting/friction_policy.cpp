@@ -182,14 +182,15 @@ LemkeSolution ConsistentFriction::dense_lemke(const FrictionLcp& lcp) {
 }
 
 /// First from the guessed basis, then from the slack basis with one spread covering vector after
-/// another while a path ends on a ray or an inaccurate answer, all within one budget (the piles'
+/// another while a path ends on a ray or an inaccurate answer (at most
+/// tuning::kSparseLemkeAttempts paths), all within one budget (the piles'
 /// paths are long, and how long depends on the covering vector: docs/tuning.md).
 LemkeSolution ConsistentFriction::sparse_lemke(const FrictionLcp& lcp, const std::vector<char>& guess) {
     const int size = static_cast<int>(lcp.q().size());
     int budget = static_cast<int>(
         std::min<long long>(static_cast<long long>(tuning::kSparseLemkePivotsPerVariable) * size + 10, tuning::kSparseLemkeMaxPivots));
     LemkeSolution s;
-    for (int attempt = 0; attempt < tuning::kLemkeAttempts && budget > 0; ++attempt) {
+    for (int attempt = 0; attempt < tuning::kSparseLemkeAttempts && budget > 0; ++attempt) {
         s = solve_sparse_lemke(lcp.sparse_M(), lcp.q(), attempt == 0 ? guess : std::vector<char>{},
                                spread_covering_vector(size, attempt), budget);
         counters_.lemke_pivots += s.pivots;

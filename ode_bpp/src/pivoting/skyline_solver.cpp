@@ -241,11 +241,7 @@ private:
             s_.L.copy_tail_from(s_.L0, k0);
             return;
         }
-        if (!a_env_loaded_) {
-            s_.A_env.reshape(s_.shape);
-            load_columns(s_.A_env, 0);
-            a_env_loaded_ = true;
-        }
+        if (!a_env_loaded_) load_a_env();
         s_.needed_a_env = true;
         s_.L.copy_tail_from(s_.A_env, k0);
     }
@@ -255,15 +251,22 @@ private:
     /// is loaded and L0 copied from it, a copy costing less than a second load.
     void load_l0() {
         s_.L0.reshape(s_.shape);
-        a_env_loaded_ = s_.needed_a_env;
+        const bool a_env_wanted = s_.needed_a_env;
         s_.needed_a_env = false;
-        if (!a_env_loaded_) {
+        a_env_loaded_ = false;
+        if (!a_env_wanted) {
             load_columns(s_.L0, 0);
             return;
         }
+        load_a_env();
+        s_.L0.copy_tail_from(s_.A_env, 0);
+    }
+
+    /// s_.A_env = Ap + shift_ I in the shape of this prepare.
+    void load_a_env() {
         s_.A_env.reshape(s_.shape);
         load_columns(s_.A_env, 0);
-        s_.L0.copy_tail_from(s_.A_env, 0);
+        a_env_loaded_ = true;
     }
 
 #ifndef NDEBUG

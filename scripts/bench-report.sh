@@ -6,7 +6,8 @@
 #      at ODE's default CFM 1e-10 and at the paper's compliance 1e-8
 #      -> OUT_DIR/corpus/<scene>-<regime>/*.mlcp (regenerated each run; never commit it)
 #   2. whole steps: each scene stepped with dantzig and with bpp, without capture, at CFM 1e-10
-#      (the paper's six at compliance 1e-8 too) -> OUT_DIR/steps/<scene>[-comp1e-8]-step.csv;
+#      (the paper's six at compliance 1e-8 too), in 5 runs (--quick: 2)
+#      -> OUT_DIR/steps/<scene>[-comp1e-8]-step[-r<run>].csv;
 #      the contact scenes the corpus leaves out (boxstack, pyramid, bin, rock pile) with bpp alone,
 #      for their fallbacks -> OUT_DIR/steps/<scene>-cfm1e-10-bpp.csv
 #   3. one bench_corpus process over the whole corpus, every method (and the peers, when built
@@ -57,9 +58,9 @@ EVERY=5
 PGS_SWEEPS=10,35,100,300,1000
 PEER_SWEEPS=10,35,100,300
 # peers run on frames whose step number is a multiple of PEER_EVERY (every PEER_EVERY/EVERY-th capture)
-if [[ $QUICK == 1 ]]; then SECONDS_PER_SCENE=5; REPEAT=3; PEER_EVERY=20; PEER_REPEAT=1; MODE=quick
+if [[ $QUICK == 1 ]]; then SECONDS_PER_SCENE=5; REPEAT=3; STEP_RUNS=2; PEER_EVERY=20; PEER_REPEAT=1; MODE=quick
   CONTACT_RUNS=("boxstack 5" "pyramid 2" "bin 2" "rockpile 1")
-else SECONDS_PER_SCENE=20; REPEAT=5; PEER_EVERY=40; PEER_REPEAT=3; MODE=full
+else SECONDS_PER_SCENE=20; REPEAT=5; STEP_RUNS=5; PEER_EVERY=40; PEER_REPEAT=3; MODE=full
   CONTACT_RUNS=("boxstack 20" "pyramid 10" "bin 10" "rockpile 5"); fi
 # regime name -> ode-bpp-demo option
 declare -A REGIMES=([cfm1e-10]="--cfm 1e-10" [comp1e-8]="--compliance 1e-8")
@@ -98,7 +99,7 @@ fi
   echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), load at start $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "peers: $PEER_LIST$([[ ${#PEER_ARGS[@]} -gt 0 ]] && echo " (sweeps $PEER_SWEEPS; on frames whose step is a multiple of $PEER_EVERY; $PEER_REPEAT timed repetitions)")"
 } > "$OUT_DIR/meta.txt"
-say "mode $MODE: ${SECONDS_PER_SCENE} s per scene, every ${EVERY}th step captured, $REPEAT repetitions per solve; peers: $PEER_LIST"
+say "mode $MODE: ${SECONDS_PER_SCENE} s per scene, every ${EVERY}th step captured, $REPEAT repetitions per solve, $STEP_RUNS whole-step runs; peers: $PEER_LIST"
 
 for scene in "${SCENES[@]}"; do
   for regime in cfm1e-10 comp1e-8; do
@@ -113,17 +114,24 @@ for scene in "${SCENES[@]}"; do
   done
 done
 
-for scene in "${SCENES[@]}"; do
-  demo "steps-$scene" "$scene" --compare dantzig,bpp --seconds "$SECONDS_PER_SCENE" --cond-every 0 \
-    --csv "$OUT_DIR/steps/$scene-step.csv" --quiet
-  say "whole steps $scene: dantzig and bpp, CFM 1e-10"
-done
+# Whole steps, STEP_RUNS runs of each comparison in turn: run r writes <name>-step.csv (r = 1) or
+# <name>-step-r<r>.csv, dantzig first in odd runs and bpp first in even ones, so that a change in
+# the shared machine's load during a run does not always fall on the same method. The report takes
+# each ratio's median over the runs (contact_report.py).
+whole_steps() {  # NAME SCENE LABEL [ode-bpp-demo options...]
+  local name=$1 scene=$2 label=$3 r order suffix
+  shift 3
+  for ((r = 1; r <= STEP_RUNS; ++r)); do
+    order=$([[ $((r % 2)) == 1 ]] && echo dantzig,bpp || echo bpp,dantzig)
+    suffix=$([[ $r == 1 ]] && echo "" || echo "-r$r")
+    demo "steps-$name$suffix" "$scene" --compare "$order" --seconds "$SECONDS_PER_SCENE" --cond-every 0 \
+      --csv "$OUT_DIR/steps/$name-step$suffix.csv" --quiet "$@"
+  done
+  say "whole steps $scene: dantzig and bpp, $label, $STEP_RUNS runs"
+}
+for scene in "${SCENES[@]}"; do whole_steps "$scene" "$scene" "CFM 1e-10"; done
 # the paper's compliance too, for the hard-contact targets (contact_report.py: both regimes)
-for scene in "${PAPER_SCENES[@]}"; do
-  demo "steps-$scene-comp1e-8" "$scene" --compare dantzig,bpp --seconds "$SECONDS_PER_SCENE" --compliance 1e-8 \
-    --cond-every 0 --csv "$OUT_DIR/steps/$scene-comp1e-8-step.csv" --quiet
-  say "whole steps $scene: dantzig and bpp, compliance 1e-8"
-done
+for scene in "${PAPER_SCENES[@]}"; do whole_steps "$scene-comp1e-8" "$scene" "compliance 1e-8" --compliance 1e-8; done
 # The contact scenes the corpus does not capture, stepped with bpp alone: their fallbacks inside
 # ODE (the cannon's and the stack's come from the corpus runs above). Simulated seconds per scene,
 # the rock pile's about 4 s of wall time per simulated second.

@@ -76,7 +76,7 @@ deps-peers: deps
 
 # Speed against accuracy, side by side with ODE's Dantzig and the peers, on one captured corpus:
 # corpus -> every method and peer in one process -> CSV, charts (PNG, SVG), report.md in
-# results/bench/ (docs/benchmarks.md). About 20 minutes; BENCH_ARGS=--quick for about 3,
+# results/bench/ (docs/benchmarks.md). About 23 minutes; BENCH_ARGS=--quick for about 3,
 # BENCH_ARGS=--no-peers without the peers. The peers' packages are installed first (as deps-peers);
 # without them (not root, no network) the report says so and compares ode-bpp's methods alone.
 BENCH_REPORT_ARGS ?=

@@ -49,9 +49,11 @@ def run_files(out_dir, scene, regime):
     """The whole-step runs of bench-report.sh: the first file, then <name>-r2.csv, -r3.csv, ... while they exist."""
     first = step_file(scene, regime)
     names = [first]
-    while os.path.exists(os.path.join(out_dir, "steps", first.replace(".csv", f"-r{len(names) + 1}.csv"))):
-        names.append(first.replace(".csv", f"-r{len(names) + 1}.csv"))
-    return names
+    while True:
+        name = first.replace(".csv", f"-r{len(names) + 1}.csv")
+        if not os.path.exists(os.path.join(out_dir, "steps", name)):
+            return names
+        names.append(name)
 
 
 def whole_steps(out_dir, scene, regime):
@@ -64,10 +66,9 @@ def whole_steps(out_dir, scene, regime):
 
 
 def run_ratios(runs, statistic, part):
-    """dantzig / bpp of statistic over each run's steps (part 0: the whole step, 1: its solver calls), for the runs
-    that hold both methods."""
-    both = [r for r in runs if "dantzig" in r and "bpp" in r]
-    return [ratio(statistic(r["dantzig"][part]), statistic(r["bpp"][part])) for r in both]
+    """dantzig / bpp of statistic over each run's steps (part 0: the whole step, 1: its solver calls); every run
+    holds both methods (speed_rows keeps only those)."""
+    return [ratio(statistic(r["dantzig"][part]), statistic(r["bpp"][part])) for r in runs]
 
 
 def median_ratio(values):

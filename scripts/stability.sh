@@ -7,7 +7,7 @@
 # Usage: stability.sh BUILD_DIR OUT_DIR [--quick]
 #   BUILD_DIR  a CMake build of this repository (the target stability_sweep is built if needed)
 #   OUT_DIR    receives csv/*.csv, charts/*.png and *.svg, report.md, sweep.log
-#   --quick    shorter runs on a coarser grid (a few minutes instead of about a quarter hour)
+#   --quick    shorter runs on a coarser grid (seconds instead of about 3 minutes; docs/stability.md)
 # Progress: one line per run on stdout (also kept in OUT_DIR/sweep.log).
 set -euo pipefail
 

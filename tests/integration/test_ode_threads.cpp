@@ -14,6 +14,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <memory>
+#include <mutex>
+#include <set>
+#include <thread>
 #include <vector>
 
 #include "ode_bpp/ode.h"
@@ -130,20 +133,39 @@ private:
     dThreadingThreadPoolID pool_;
 };
 
-/// The world's islands and the islands handed to ODE's Dantzig, from ODE's own statistics.
+/// The world's islands and the islands handed to ODE's Dantzig, from ODE's own statistics, and
+/// the threads the islands were solved on (an MLCP observer's).
 struct IslandCount {
     long islands = 0;
     long failures = 0;
+    std::size_t solving_threads = 0;
 };
+
+/// The threads an MLCP observer was called on; the pool's threads call it concurrently.
+struct SolvingThreads {
+    std::mutex lock;
+    std::set<std::thread::id> ids;
+};
+
+void note_thread(const dMLCP*, const dMLCPIslandStats* stats, void* data) {
+    if (stats == nullptr) return;
+    auto& seen = *static_cast<SolvingThreads*>(data);
+    const std::lock_guard<std::mutex> g(seen.lock);
+    seen.ids.insert(std::this_thread::get_id());
+}
 
 std::vector<double> run(const char* solver, int threads, int steps, IslandCount* counters, double nudge = 0) {
     IslandField field(nudge);
     EXPECT_EQ(dWorldSetMLCPSolver(field.world, solver), 1) << solver;
+    SolvingThreads seen;
+    dWorldSetMLCPObserver(field.world, &note_thread, &seen);
     {
         std::unique_ptr<ThreadedStepping> pool;
         if (threads > 1) pool = std::make_unique<ThreadedStepping>(field.world, threads);
         for (int s = 0; s < steps; ++s) field.step();
     }
+    dWorldSetMLCPObserver(field.world, nullptr, nullptr);
+    counters->solving_threads = seen.ids.size();
     dMLCPStepStats total{};
     total.struct_size = sizeof total;
     dWorldGetMLCPStats(field.world, nullptr, &total);
@@ -162,6 +184,8 @@ TEST(OdeThreads, ThreadPoolIslandsGiveTheSingleThreadedMotion) {
         const std::vector<double> threaded = run(solver, 2, kSteps, &two);
         ASSERT_EQ(serial.size(), threaded.size());
         EXPECT_GE(two.islands, 8 * kSteps) << solver;  // every island of every step went through the hook
+        EXPECT_EQ(one.solving_threads, 1u) << solver;
+        EXPECT_GE(two.solving_threads, 2u) << solver << ": the pool solved no island besides the stepping thread";
         EXPECT_EQ(two.failures, 0) << solver;
         // a contact at the collision threshold may come and go in one run only
         EXPECT_LE(std::labs(one.islands - two.islands), 4) << solver << ": " << one.islands << " vs " << two.islands;

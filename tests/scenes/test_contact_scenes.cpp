@@ -24,14 +24,17 @@ namespace {
 struct Expectation {
     std::string scene;
     long min_rows;
-    bool dantzig_recorded;  ///< false: ODE's Dantzig takes ~1 s per step on it, too long for the suite
+    /// Simulated seconds of ODE's Dantzig to record: 0 for the scene's own length. The rock pile's
+    /// first second only (its landing, islands of up to about 900 rows, 2 s of wall time): once
+    /// the pile stands Dantzig takes about a second per step, too long for the suite.
+    double dantzig_seconds;
 };
 
 const Expectation kExpectations[] = {
-    {"pyramid", 900, true},
-    {"stack", 400, true},
-    {"bin", 450, true},
-    {"rockpile", 1000, false},
+    {"pyramid", 900, 0},
+    {"stack", 400, 0},
+    {"bin", 450, 0},
+    {"rockpile", 1000, 1.0},
 };
 
 void PrintTo(const Expectation& e, std::ostream* os) { *os << e.scene; }
@@ -57,13 +60,18 @@ TEST_P(ContactScene, MeetsItsCriterionWithSolverUnderTest) {
 
 TEST_P(ContactScene, DantzigOutcomeIsRecorded) {
     const Expectation& e = GetParam();
-    if (!e.dantzig_recorded) GTEST_SKIP() << "ODE's Dantzig takes about a second per step on " << e.scene;
-    const SceneOutcome out = run_scene(e.scene, "dantzig", make_scene(e.scene)->default_seconds());
+    const double seconds = e.dantzig_seconds > 0 ? e.dantzig_seconds : make_scene(e.scene)->default_seconds();
+    const SceneOutcome out = run_scene(e.scene, "dantzig", seconds);
+    EXPECT_EQ(out.steps_done, out.steps);
+    EXPECT_EQ(out.non_finite_body, "");
+    if (e.dantzig_seconds > 0) {  // a partial run: the criterion, judged at the end, says nothing
+        std::printf("[ dantzig  ] %s, first %.1f s: largest island %ld rows, slowest step %.1f ms\n", e.scene.c_str(),
+                    seconds, static_cast<long>(out.total.max_rows), out.slowest_step_ms);
+        return;
+    }
     RecordProperty("dantzig_success", out.success.ok ? "yes" : "no");
     RecordProperty("dantzig_detail", out.success.detail);
     print_record(e.scene, "dantzig", out);
-    EXPECT_EQ(out.steps_done, out.steps);
-    EXPECT_EQ(out.non_finite_body, "");
 }
 
 TEST_P(ContactScene, DescribesItselfAndIsRegistered) {

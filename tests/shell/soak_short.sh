@@ -6,7 +6,7 @@
 # Also: the tool refuses bad arguments with status 2.
 set -euo pipefail
 soak=${ODE_BPP_BINARY_DIR:?}/demos/ode-bpp-soak
-[ -x "$soak" ] || { echo "SKIP: $soak not built"; exit 0; }
+[ -x "$soak" ] || { echo "FAIL: no $soak (configure with ODE_BPP_BUILD_DEMOS=ON)"; exit 1; }
 
 out=$("$soak" winch forklift --steps 6000 --baseline 4000 --every 1000 2>/dev/null) || { echo "FAIL: $out"; exit 1; }
 echo "$out"

@@ -209,6 +209,7 @@ TEST_F(OdeCapture, MetadataRecordsTheStep) {
 TEST_F(OdeCapture, WrittenFileReadsBackIdentical) {
     for (int step = 0; step < 3; ++step) collide_and_step(0.01);
     ASSERT_TRUE(captured.errors.empty()) << captured.errors.front();
+    ASSERT_EQ(captured.files.size(), 3u);  // one island a step
     ASSERT_EQ(captured.reread.size(), captured.files.size());
     for (std::size_t k = 0; k < captured.files.size(); ++k) {
         ASSERT_TRUE(captured.reread[k].ok) << captured.reread[k].error;

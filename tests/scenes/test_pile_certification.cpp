@@ -115,7 +115,7 @@ struct OpenIsland {
     long step;
     int rows;
 };
-const OpenIsland kOpen[] = {{"bin", 150, 0}};
+const OpenIsland kOpen[] = {{"bin", 150, 0}, {"bin", 270, 0}};
 
 bool is_open(const std::string& scene, long step, int rows, int min_rows) {
     for (const OpenIsland& o : kOpen)

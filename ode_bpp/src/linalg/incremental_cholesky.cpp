@@ -37,6 +37,7 @@ void IncrementalCholesky::reset(int capacity) {
     start_.assign(1, 0);
     start_.reserve(rows + 1);
     first_.resize(rows);
+    inverse_pivot_.resize(rows);
     sigma_.resize(rows);
     cos_.resize(rows);
     sin_.resize(rows);
@@ -54,15 +55,16 @@ namespace {
 
 /// The new row l = L⁻¹ c of append (l[k - first] = c_k on entry, for first <= k < m): forward
 /// substitution, one dot product per row over the overlap of the two envelopes; then |l|². Rows
-/// of L are packed at L + start[k], from column first_col[k]. On x86-64 also compiled for AVX2
-/// (kernel_clones.h): the same bits.
+/// of L are packed at L + start[k], from column first_col[k]; inverse[k] = 1 / L(k, k). On x86-64
+/// also compiled for AVX2 (kernel_clones.h): the same bits.
 KERNEL_FOR_AVX2_TOO
-double forward_new_row(const double* L, const std::size_t* start, const int* first_col, double* l, int first, int m) {
+double forward_new_row(const double* L, const std::size_t* start, const int* first_col, const double* inverse,
+                       double* l, int first, int m) {
     for (int k = first; k < m; ++k) {
         const int fk = first_col[k];
         const int from = std::max(fk, first);
         const double* Lk = L + start[k];
-        l[k - first] = (l[k - first] - dot(Lk + (from - fk), l + (from - first), k - from)) / Lk[k - fk];
+        l[k - first] = (l[k - first] - dot(Lk + (from - fk), l + (from - first), k - from)) * inverse[k];
     }
     return dot(l, l, m - first);
 }
@@ -75,9 +77,11 @@ bool IncrementalCholesky::append(const double* column, int first, double diagona
     grow(begin + static_cast<std::size_t>(m - first + 1));
     double* l = L_.data() + begin;  // l[k - first] = L(m, k)
     std::copy(column + first, column + m, l);
-    const double pivot = diagonal - forward_new_row(L_.data(), start_.data(), first_.data(), l, first, m);
+    const double pivot =
+        diagonal - forward_new_row(L_.data(), start_.data(), first_.data(), inverse_pivot_.data(), l, first, m);
     if (pivot_breaks_down(pivot, diagonal)) return false;
     l[m - first] = std::sqrt(pivot);
+    inverse_pivot_[static_cast<std::size_t>(m)] = 1.0 / l[m - first];
     first_[static_cast<std::size_t>(m)] = first;
     start_.push_back(begin + static_cast<std::size_t>(m - first + 1));
     ++size_;
@@ -94,6 +98,10 @@ void IncrementalCholesky::load_shape(const int* first, int size) {
     }
     grow(start_.back());
     size_ = size;
+}
+
+void IncrementalCholesky::finish_load() {
+    for (int i = 0; i < size_; ++i) inverse_pivot_[static_cast<std::size_t>(i)] = 1.0 / row_entries(i)[i - first(i)];
 }
 
 void IncrementalCholesky::remove(int p) {
@@ -123,6 +131,7 @@ void IncrementalCholesky::remove(int p) {
         cos_[i] = d / r;
         sin_[i] = sigma / r;
         to[i - 1 - new_first] = r;
+        inverse_pivot_[static_cast<std::size_t>(i - 1)] = 1.0 / r;
         first_[static_cast<std::size_t>(i - 1)] = new_first;
         start_[static_cast<std::size_t>(i - 1)] = to_start;
         to_start += static_cast<std::size_t>(i - new_first);
@@ -138,16 +147,17 @@ namespace {
 /// per row over its envelope, then Lᵀ x = y, row i of L being column i of Lᵀ, by an axpy per
 /// row. On x86-64 also compiled for AVX2 (kernel_clones.h): the same bits.
 KERNEL_FOR_AVX2_TOO
-void solve_packed(const double* L, const std::size_t* start, const int* first_col, int n, double* x) {
+void solve_packed(const double* L, const std::size_t* start, const int* first_col, const double* inverse, int n,
+                  double* x) {
     for (int i = 0; i < n; ++i) {
         const int f = first_col[i];
         const double* Li = L + start[i];
-        x[i] = (x[i] - dot(Li, x + f, i - f)) / Li[i - f];
+        x[i] = (x[i] - dot(Li, x + f, i - f)) * inverse[i];
     }
     for (int i = n - 1; i >= 0; --i) {
         const int f = first_col[i];
         const double* Li = L + start[i];
-        const double xi = x[i] / Li[i - f];
+        const double xi = x[i] * inverse[i];
         x[i] = xi;
         double* xf = x + f;
         for (int k = 0; k < i - f; ++k) xf[k] -= xi * Li[k];
@@ -156,7 +166,9 @@ void solve_packed(const double* L, const std::size_t* start, const int* first_co
 
 }  // namespace
 
-void IncrementalCholesky::solve(double* x) const { solve_packed(L_.data(), start_.data(), first_.data(), size_, x); }
+void IncrementalCholesky::solve(double* x) const {
+    solve_packed(L_.data(), start_.data(), first_.data(), inverse_pivot_.data(), size_, x);
+}
 
 void IncrementalCholesky::release() {
     L_.release();

@@ -21,6 +21,10 @@
 //    first <= p keeps its first, a row with first > p starts one column earlier, like its column.
 // Recorded envelopes never shrink on removal (a row whose only early non-zero was in column p
 // keeps a zero entry), which is safe: stored entries may be zero, no entry outside is non-zero.
+//
+// The reciprocal of every pivot L(i, i) is kept beside it, and the substitutions multiply by it:
+// each row of a triangular solve waits on the one before, and a division's latency lay end to end
+// on that chain (the same change as the skyline solves'; docs/benchmarks.md).
 #pragma once
 
 #include <cstddef>
@@ -49,10 +53,12 @@ public:
     /// Makes S `size` indices whose factor is known from elsewhere (FreeRowsFactor's reset from
     /// the pivoting loop's skyline factor), row i of L recorded from column first[i] <= i on:
     /// the caller then writes L(i, first[i] .. i) through loaded_row(i), the diagonal positive,
-    /// before any other call. Nothing is computed. Requires size <= capacity.
+    /// and calls finish_load() before any other call. Requires size <= capacity.
     void load_shape(const int* first, int size);
     /// Row i's recorded entries, L(i, first(i)) .. L(i, i), for load_shape's caller to write.
     double* loaded_row(int i) { return row_entries(i); }
+    /// Ends a load: takes the reciprocals of the written pivots.
+    void finish_load();
 
     /// Removes the index at position p of S (0 <= p < size()). With sigma = L(p+1:, p), the
     /// trailing block becomes chol(L33 L33ᵀ + sigma sigmaᵀ): a rank-1 *update* (nothing cancels,
@@ -85,6 +91,7 @@ private:
     PageArray L_;                      ///< row i at start_[i] .. start_[i+1]-1: L(i, first_[i] .. i)
     std::vector<std::size_t> start_;   ///< size_ + 1 offsets into L_
     std::vector<int> first_;           ///< each row's first column
+    std::vector<double> inverse_pivot_;      ///< 1 / L(i, i), by position
     std::vector<double> sigma_, cos_, sin_;  ///< remove(): sigma and the rotations, by position
 };
 

@@ -105,6 +105,7 @@ void FreeRowsFactor::load_seed(const EnvelopeFactor& seed) {
             if (p >= 0 && q >= first[static_cast<std::size_t>(p)]) seed_rows_[static_cast<std::size_t>(p)][q] = column[r];
         }
     }
+    factor_.finish_load();
     column_.resize(static_cast<std::size_t>(n));
 }
 

@@ -303,6 +303,8 @@ ValidationResult validate_call(const Problem& problem, const Options& options, c
     if (v.valid) v = validate_warm_start(problem, start.states);
     if (v.valid && !(options.tolerance >= 0 && std::isfinite(options.tolerance)))
         v = {false, "tolerance must be finite and >= 0"};
+    if (v.valid && !(options.tuning.friction_damping > 0 && options.tuning.friction_damping <= 1))
+        v = {false, "tuning.friction_damping must be in (0, 1]"};
     return v;
 }
 

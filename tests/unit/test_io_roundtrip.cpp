@@ -67,6 +67,14 @@ TEST(IoRoundTrip, EncodingIsCanonical) {
     EXPECT_EQ(bytes, io_test::encode(r.file));
 }
 
+TEST(IoRoundTrip, EncodingIntoNoBufferFailsWithAReason) {
+    const MlcpFile f = io_test::make_sample(5, 1);
+    std::string error;
+    EXPECT_FALSE(ode_bpp::encode_mlcp(f, nullptr, &error));
+    EXPECT_NE(error.find("null"), std::string::npos) << error;
+    EXPECT_FALSE(ode_bpp::encode_mlcp(f, nullptr, nullptr));  // no reason wanted: still no crash
+}
+
 TEST(IoRoundTrip, SizeMatchesTheDocumentedLayout) {
     const MlcpFile f = io_test::make_sample(8, 3);
     std::size_t meta_bytes = 0;

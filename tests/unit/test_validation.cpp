@@ -226,6 +226,23 @@ TEST(Validation, NonFiniteToleranceIsInvalidInput) {
     EXPECT_EQ(solve(p, o, x.data()).status, Status::InvalidInput);
 }
 
+TEST(Validation, FrictionDampingOutsideZeroToOneIsInvalidInput) {
+    auto p = good_problem();
+    for (double d : {0.0, -0.5, 1.5, kNaN}) {
+        Options o;
+        o.tuning.friction_damping = d;
+        std::vector<double> x(p.n, 5.0);
+        const Result r = solve(p, o, x.data());
+        EXPECT_EQ(r.status, Status::InvalidInput) << d;
+        EXPECT_NE(r.message.find("friction_damping"), std::string::npos) << r.message;
+        for (double v : x) EXPECT_EQ(v, 0.0);
+    }
+    Options o;
+    o.tuning.friction_damping = 1.0;  // no damping: valid
+    std::vector<double> x(p.n);
+    EXPECT_NE(solve(p, o, x.data()).status, Status::InvalidInput);
+}
+
 TEST(Validation, NullXIsInvalidInputWithoutCrash) {
     auto p = good_problem();
     EXPECT_EQ(solve(p, Options{}, static_cast<double*>(nullptr)).status, Status::InvalidInput);

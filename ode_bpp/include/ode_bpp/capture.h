@@ -22,7 +22,8 @@ namespace ode_bpp {
 /// when the joints do not tile the rows or the structure is otherwise invalid.
 ODE_BPP_API std::optional<MlcpFile> capture_from_ode(const dMLCP& problem, const Metadata& meta, std::string* error);
 
-/// capture_from_ode followed by write_mlcp.
+/// capture_from_ode followed by write_mlcp: true when the file was written.
+/// error (here and above): out, may be null; the reason, set only on failure.
 ODE_BPP_API bool write_mlcp_from_ode(const std::string& path, const dMLCP& problem, const Metadata& meta,
                          std::string* error);
 

@@ -31,21 +31,23 @@ inline constexpr std::uint32_t kMlcpFormatVersion = 1;
 /// [A-Za-z0-9_.-]; values contain neither '\n' nor '\0'; keys are unique.
 /// Conventional keys: scene, frame, island, cfm, erp, step_size, solver.
 struct ODE_BPP_API Metadata {
-    std::vector<std::pair<std::string, std::string>> entries;
+    std::vector<std::pair<std::string, std::string>> entries;  ///< (key, value), in file order
 
     /// Sets key to value, replacing an existing entry in place or appending a new one.
     void set(const std::string& key, const std::string& value);
     /// The value of key, or null if absent.
     const std::string* find(std::string_view key) const;
 
+    /// True when key obeys the rules above (non-empty, [A-Za-z0-9_.-] only).
     static bool valid_key(std::string_view key);
+    /// True when value holds neither '\n' nor '\0'.
     static bool valid_value(std::string_view value);
 };
 
 /// One MLCP that owns its data.
 struct ODE_BPP_API MlcpFile {
-    int n = 0;
-    int nub = 0;
+    int n = 0;    ///< rows
+    int nub = 0;  ///< leading unbounded rows (Problem::nub)
     /// n x n row-major with lda = n, symmetric: the file's lower triangle mirrored.
     std::vector<double> A;
     std::vector<double> b, lo, hi;   ///< n each; lo/hi may be -inf/+inf
@@ -54,8 +56,9 @@ struct ODE_BPP_API MlcpFile {
     std::vector<int> block_body;     ///< 2 * num_blocks entries, -1 for the static environment
     int num_bodies = 0;              ///< block_body entries lie in [-1, num_bodies)
     std::vector<double> x_ref;       ///< n entries of a reference solution, or empty
-    Metadata meta;
+    Metadata meta;                   ///< where the problem came from (scene, frame, cfm, ...)
 
+    /// Row blocks (joints) of the block structure: block_row.size() - 1, or 0 without one.
     int num_blocks() const { return block_row.empty() ? 0 : static_cast<int>(block_row.size()) - 1; }
     /// A view for solve(); valid while this object is alive and unchanged.
     Problem view() const;
@@ -77,10 +80,12 @@ ODE_BPP_API ReadResult read_mlcp_bytes(const std::uint8_t* data, std::size_t siz
 /// Copies a Problem (strided vectors, any lda) into an owning MlcpFile; x_ref is n contiguous
 /// doubles or null. num_bodies becomes 1 + the largest body index. Fails, with a message
 /// naming the field, when the structure is invalid (same checks as the reader).
+/// error (here and below): out, may be null; the reason, set only on failure.
 ODE_BPP_API std::optional<MlcpFile> copy_problem(const Problem& problem, const Metadata& meta,
                                      const double* x_ref, std::string* error);
 
-/// Serializes a file image (version kMlcpFormatVersion). Fails on an invalid structure.
+/// Serializes a file image (version kMlcpFormatVersion) into *bytes (out, replaced). Fails on an
+/// invalid structure or a null bytes.
 ODE_BPP_API bool encode_mlcp(const MlcpFile& file, std::vector<std::uint8_t>* bytes, std::string* error);
 
 /// Writes the file through a temporary and a rename, so readers never see half a file.

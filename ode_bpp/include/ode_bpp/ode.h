@@ -29,7 +29,8 @@ ODE_BPP_API int ode_bpp_register_solvers(void);
 ODE_BPP_API int ode_bpp_register_dense_form(const char* method, const char* as_name);
 
 /// Selects the named solver for this world (registering first). Returns 1 on success, 0 for an
-/// unknown name (the world's choice is then unchanged).
+/// unknown name (the world's choice is then unchanged). A null name selects the process's
+/// default, as dWorldSetMLCPSolver does.
 ODE_BPP_API int ode_bpp_use(dWorldID world, const char* solver_name);
 
 #ifdef __cplusplus
@@ -58,13 +59,14 @@ ODE_BPP_API void set_world_settings(dWorldID world, const WorldSettings& setting
 ODE_BPP_API WorldSettings world_settings(dWorldID world);
 
 /// The full Result of the last island that the hook solved in this world (for demos and tests:
-/// residuals, pivots, tight count, fallback). Empty Result if none.
+/// residuals, pivots, tight count, fallback). A default-constructed Result if none.
 ODE_BPP_API Result last_island_result(dWorldID world);
 
 /// The island's A as a dense m x m row-major array holding the lower triangle (diagonal included;
 /// the upper triangle zero), whichever form ODE handed over: read from the dense A, or assembled
 /// from J, J M^-1 and the CFM in the sparse form. O(m^2): for capture and diagnostics, never
-/// on the solve path. Valid in the observer's "before" call.
+/// on the solve path. Valid in the observer's "before" call. A: out, resized to m*m; all zero
+/// for an island that carries neither form.
 ODE_BPP_API void island_matrix_lower(const dMLCP& island, std::vector<double>& A);
 
 /// Forgets the warm-start state and settings of a world. dWorldDestroy does this itself (the

@@ -12,6 +12,7 @@
 #include "ode_bpp/export.h"
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -48,10 +49,12 @@ class SymmetricRows;
 ///    Jacobian by the world hook (ode/assemble.h). Validation, solve and residuals then cost
 ///    O(non-zeros); the dense form is converted into this one in one pass.
 struct Problem {
-    int n = 0;
-    const double* A = nullptr;
-    int lda = 0;
-    const linalg::SymmetricRows* sparse = nullptr;
+    int n = 0;                     ///< rows; 0 is a valid, empty problem
+    const double* A = nullptr;     ///< dense form: n rows of stride lda, lower triangle read
+    int lda = 0;                   ///< dense form: row stride, >= n
+    const linalg::SymmetricRows* sparse = nullptr;  ///< sparse form, or null for the dense one
+    /// n entries each, read only: w = A x - b; bounds lo_i <= x_i <= hi_i, where a friction
+    /// row's hi_i is its mu_i >= 0 and its bounds are +-mu_i |x_findex[i]| (its lo_i plays no part).
     ConstStrided b, lo, hi;
     const int* findex = nullptr;   ///< n entries, -1 for none; may be null
     /// Leading rows that are unbounded whatever lo/hi say. A lower bound only: every row with
@@ -75,7 +78,9 @@ enum class Method {
     Dantzig,   ///< "dantzig": ODE's stock Dantzig through dSolveMLCPDantzig (needs the ODE library)
     Pgs,       ///< "pgs": projected Gauss-Seidel, Options::pgs_iterations sweeps
 };
+/// The method's name as above ("unknown" for a value outside the enum).
 ODE_BPP_API const char* to_string(Method m);
+/// The method of that exact (case-sensitive) name, or nullopt.
 ODE_BPP_API std::optional<Method> method_from_string(std::string_view name);
 /// All method names, in the order of the enum.
 ODE_BPP_API std::vector<std::string> method_names();
@@ -85,9 +90,12 @@ enum class FrictionMode {
     Frozen,      ///< Dantzig's semantics: bounds fixed from the normals of a first solve
     Consistent,  ///< at convergence |x_i| <= mu_i * x_findex[i] for every friction row
 };
+/// "frozen" or "consistent".
 ODE_BPP_API const char* to_string(FrictionMode f);
+/// The mode of that exact (case-sensitive) name, or nullopt.
 ODE_BPP_API std::optional<FrictionMode> friction_from_string(std::string_view name);
 
+/// How a solve ended; Result::message says more whenever it is not Converged.
 enum class Status {
     /// an answer within certification_level() of exact in the residual of its friction semantics
     /// (the natural residuals for Consistent friction and PGS, the fixed-bound ones for Frozen
@@ -103,8 +111,11 @@ enum class Status {
     InvalidInput,    ///< validation failed (NaN/Inf, lo > hi, bad findex, bad sizes); x is zero
     FrictionNotConsistent,  ///< consistent mode: the outer bound loop ran out of iterations
 };
+/// "converged", "max-iterations", "fallback-used", "not-spd", "invalid-input",
+/// "friction-not-consistent" ("unknown" outside the enum).
 ODE_BPP_API const char* to_string(Status s);
-/// True when x is a usable answer (Converged, FallbackUsed, or an inexact but finite iterate).
+/// True when x is a usable answer: Converged, FallbackUsed, or a finite but uncertified iterate
+/// (MaxIterations, FrictionNotConsistent); false for NotSpd and InvalidInput, whose x is zero.
 ODE_BPP_API bool is_usable(Status s);
 
 /// The fallback an answer came through (solver.cpp's chain), if any.
@@ -117,8 +128,12 @@ enum class Fallback : std::int8_t {
 /// "none", "regularized", "dantzig", "regularized+dantzig".
 ODE_BPP_API const char* to_string(Fallback f);
 
-/// Per-row state of an index set: the paper's F, T_lo and T_hi.
-enum class RowState : std::int8_t { Free = 0, AtLo = 1, AtHi = 2 };
+/// Per-row state of an index set: the paper's F, T_lo and T_hi (Eq. 4).
+enum class RowState : std::int8_t {
+    Free = 0,  ///< w_i = 0, lo_i <= x_i <= hi_i at an answer
+    AtLo = 1,  ///< x_i = lo_i and w_i >= 0
+    AtHi = 2,  ///< x_i = hi_i and w_i <= 0
+};
 
 /// The algorithm's tuned internals. The defaults were measured on the paper's scenes inside ODE
 /// (docs/tuning.md, with what the alternatives gave); a user rarely needs to change them.
@@ -151,6 +166,7 @@ struct Tuning {
     bool active_set = true;
     /// Consistent friction: most outer bound updates, damped (new = (1-d)*old + d*target).
     int max_friction_rounds = 100;
+    /// d of those updates, in (0, 1] (1: no damping); outside it solve() answers InvalidInput.
     double friction_damping = 0.6;
     /// Consistent friction: first solve with the friction bounds moving with the normals inside
     /// each pivot step, friction rows at a bound solved together with their normals
@@ -178,10 +194,10 @@ struct Tuning {
 
 /// Settings of one solve.
 struct Options {
-    Method method = Method::Bpp;
-    FrictionMode friction = FrictionMode::Frozen;
+    Method method = Method::Bpp;                   ///< the solver (to_string(Method) names them)
+    FrictionMode friction = FrictionMode::Frozen;  ///< how friction bounds follow the normals
     /// Pivot-step budget per fixed-bound solve (Frozen friction makes two, Consistent one per
-    /// round). The paper used 35.
+    /// round), at least 1 (a smaller value counts as 1). The paper used 35.
     int max_pivots = 100;
     /// Relative tolerance: a row is infeasible when it breaks its bound by more than
     /// tol * (|A||x| + |b|)_i (scaled per row, never an absolute constant).
@@ -194,7 +210,7 @@ struct Options {
     bool compute_factor_error = false;
     /// Record |T| at every pivot step in Result::pivoting.tight_per_step.
     bool record_steps = true;
-    Tuning tuning;
+    Tuning tuning;  ///< the algorithm's internals; the defaults rarely need changing
 };
 
 /// Where a solve starts: what an earlier solve of the same island left behind (the world hook
@@ -264,18 +280,20 @@ struct PivotStats {
 /// What a solve returns besides x: DART's {status, iterations, residual, message} shape, with
 /// the pivoting's counts and every residual.
 struct Result {
+    /// How the solve ended. A default-constructed Result (no solve yet, e.g. last_island_result
+    /// of a world that has stepped none) says InvalidInput.
     Status status = Status::InvalidInput;
     std::string message;          ///< human-readable reason, always set when not Converged
-    Method method = Method::Bpp;
-    FrictionMode friction = FrictionMode::Frozen;
-    Fallback fallback = Fallback::None;
-    PivotStats pivoting;
+    Method method = Method::Bpp;  ///< the method that was asked for
+    FrictionMode friction = FrictionMode::Frozen;  ///< the friction semantics it solved with
+    Fallback fallback = Fallback::None;  ///< the fallback the answer came through, if any
+    PivotStats pivoting;          ///< pivot steps and friction rounds, all stages together
     /// The answer's residuals, friction bounds taken from its own normal impulses.
     Residuals residuals;
     int tight = 0;                ///< |T| at the answer
     /// Table 4's ||L_deleted - chol(A_FF)||_F at the final index set (NaN unless requested with
     /// Options::compute_factor_error and meaningful for the method).
-    double factor_error = -1;
+    double factor_error = std::numeric_limits<double>::quiet_NaN();
     /// delta of the A + delta*I the answer solves (0 unless the fallback was Regularized).
     double regularization = 0;
     std::vector<RowState> states; ///< final index set, original row order (for warm starts)

@@ -26,7 +26,8 @@ public:
 
     /// The buffers of each part of the solver (defined inside the library, workspace_parts.h).
     struct Parts;
-    /// Created on first use.
+    /// For the library's own use (the type is incomplete outside it): the parts, created by the
+    /// first call, then the same object until the workspace is destroyed or moved from.
     Parts& parts();
 
 private:

@@ -193,6 +193,7 @@ std::optional<MlcpFile> copy_problem(const Problem& problem, const Metadata& met
 }
 
 bool encode_mlcp(const MlcpFile& file, std::vector<std::uint8_t>* bytes, std::string* error) {
+    if (bytes == nullptr) return fail(error, "no output buffer (bytes is null)");
     try {
         if (auto e = validate(file)) return fail(error, *e);
         const std::string meta = metadata_text(file.meta);

@@ -22,7 +22,7 @@ inline double deletion_price(const CostModel& cost, const std::vector<int>& tigh
 }
 
 /// Copy L0 from column copy_from (and Ap's tail), then refactor from the first tight row,
-/// skipping the tight ones.
+/// skipping the tight ones (ascending, permuted space, at least one).
 inline double refactor_price(const CostModel& cost, const std::vector<int>& tight_rows, int copy_from) {
     return kCopyUnit * cost.copy_cost(copy_from) + kRefactorUnit * cost.refactor_cost(tight_rows.front(), tight_rows);
 }

@@ -67,7 +67,8 @@ public:
     const SymmetricRows& in_built_order(SymmetricRows& out) const;
 
     /// The order of the rows: stored row i is row order()[i] of the matrix as built (empty:
-    /// the identity). Set by the ordered assign_lower and carried along by permute_into, so that
+    /// the identity). Set by assign(problem, perm) and the ordered assign_lower and carried along
+    /// by permute_into, so that
     /// a problem's compressed rows may come in the solver's order (Problem::sparse).
     const std::vector<int>& order() const { return order_; }
     /// order()[i], or i when the order is the identity.
@@ -76,6 +77,8 @@ public:
     int n() const { return n_; }
     /// Stored off-diagonal entries (both triangles).
     int off_diagonal_entries() const { return rowptr_.empty() ? 0 : rowptr_[n_]; }
+    /// Stored row i's diagonal entry (stored order, as every index of this class but built_row's
+    /// result).
     double diag(int i) const { return diag_[i]; }
     double max_diag() const;
     /// Off-diagonal entries of row i: positions rowptr(i) .. rowptr(i+1)-1 of col()/val(). By
@@ -88,7 +91,7 @@ public:
     /// val(0) .. val(off_diagonal_entries() - 1), contiguous.
     const double* values() const { return val_.data(); }
 
-    /// y = (Ap + shift I) x; x, y: n entries, permuted space.
+    /// y = (Ap + shift I) x; x, y: n entries in stored order (the solver's permuted space).
     void multiply(const std::vector<double>& x, double shift, std::vector<double>& y) const;
     /// y = |Ap + shift I| |x| (the per-row scale of the tolerance), n entries.
     void abs_multiply(const std::vector<double>& x, double shift, std::vector<double>& y) const;

@@ -43,7 +43,7 @@ inline RowVerdict classify_row(RowState s, double x, double w, double lo, double
 
 /// Infeasible rows of one iterate and their total violation (in units of w, for tie-breaks).
 struct Infeasibility {
-    std::vector<int> rows;            ///< ascending index
+    std::vector<int> rows;            ///< ascending index, in the caller's index space
     std::vector<RowState> flip_to;    ///< the state Eq. 4 moves each of them to
     std::vector<double> excess;       ///< how far each breaks its condition (RowVerdict::excess)
     double violation = 0;
@@ -56,7 +56,9 @@ struct Infeasibility {
     }
 };
 
-/// Eq. 4 over rows 0 .. n-1 (classify_row each), into inf. diag(i): A_ii (+ shift).
+/// Eq. 4 over rows 0 .. n-1 (classify_row each), into inf. diag(i): A_ii (+ shift). Every
+/// vector has n entries in one index space, the caller's (the permuted space of the pivoting
+/// loops, the original one on the small-island path).
 template <typename Diagonal>
 void classify_rows(int n, const std::vector<RowState>& states, const std::vector<double>& x, const std::vector<double>& w,
                    const std::vector<double>& lo, const std::vector<double>& hi, Diagonal diag,

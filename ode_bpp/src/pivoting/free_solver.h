@@ -26,7 +26,7 @@ enum class FactorOutcome {
 /// the free ones.
 struct EnvelopeFactor {
     const linalg::SkylineMatrix* L = nullptr;   ///< null: none kept
-    const std::vector<int>* tight_rows = nullptr;  ///< T, ascending
+    const std::vector<int>* tight_rows = nullptr;  ///< T, ascending, permuted space
 };
 
 /// Everything in the permuted index space of the linalg::SymmetricRows the strategy was built on.

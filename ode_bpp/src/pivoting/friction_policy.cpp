@@ -65,8 +65,7 @@ PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vect
 /// or Tuning::max_friction_rounds. budget_spent: an earlier fixed-bound solve of this answer ran
 /// out of steps (its status then says so).
 PolicyOutcome ConsistentFriction::outer_rounds(std::vector<RowState>& states, std::vector<double>& x, bool budget_spent) {
-    const double d = options_.tuning.friction_damping > 0 && options_.tuning.friction_damping <= 1 ? options_.tuning.friction_damping : 1.0;
-    FrictionBoundUpdate update(d);
+    FrictionBoundUpdate update(options_.tuning.friction_damping);  // in (0, 1]: solve()'s validate_call
     for (;;) {
         if (friction_.consistent(lcp_, options_.tolerance, states, x)) {
             if (!budget_spent) certify_rounds(states, x);

@@ -1,6 +1,9 @@
 // What goes with an iterate x of the pivoting loops (pivot_loop.cpp, active_set.cpp):
 // w = (A + shift I) x - b, the row scales (|A||x| + |b|)_i that classify_row.h measures against,
 // and Eq. 6's backward error on the free rows.
+//
+// Index space: the BoxedLcp's (the permuted space of the solve); tight_columns_product's is the
+// stored order of the SymmetricRows it is given.
 #pragma once
 
 #include <vector>

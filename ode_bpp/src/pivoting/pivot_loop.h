@@ -13,8 +13,6 @@
 
 namespace ode_bpp::pivoting {
 
-/// What one run of the loop may do; the defaults are Options' and Tuning's (fixed_bound_solve.cpp
-/// derives every run's settings from them).
 /// What a run's (or a fixed-bound solve's) answer is for.
 enum class AnswerUse {
     Final,         ///< reported: its w and row scales end complete on every row (its residuals
@@ -24,11 +22,13 @@ enum class AnswerUse {
                    ///< nothing is kept
 };
 
+/// What one run of the loop may do; the defaults are Options' and Tuning's (fixed_bound_solve.cpp
+/// derives every run's settings from them).
 struct PivotSettings {
     int max_pivots = Options{}.max_pivots;       ///< solves of Eq. 6 allowed in this run
     int murty_after = Tuning{}.murty_after;      ///< block steps without a new minimum of infeasible rows before Murty
     double tolerance = Options{}.tolerance;      ///< relative, scaled per row (classify_row.h)
-    bool record_steps = true;
+    bool record_steps = true;                    ///< |T| of every step into tight_per_step
     /// Steps without a new least count of infeasible rows after which the run gives up with
     /// LoopOutcome::Stalled (in the block and in Murty's phase alike); 0: never. A run that may
     /// stall also stalls as soon as a block step returns to an index set it has already visited:
@@ -39,7 +39,7 @@ struct PivotSettings {
     /// wrong sign beyond the factor's accuracy and pivot on from there (pivot_loop.cpp, polish);
     /// the new answer replaces the first only if it converges too.
     bool polish = true;
-    AnswerUse answer = AnswerUse::Final;
+    AnswerUse answer = AnswerUse::Final;         ///< what the run's answer is for
 };
 
 /// Counters accumulated over every run of the loop that a solve makes.
@@ -48,6 +48,7 @@ struct PivotSettings {
 using PivotCounters = PivotStats;
 
 
+/// How a run of the loop ended.
 enum class LoopOutcome {
     Converged,      ///< no row infeasible: x solves the boxed LCP to the scaled tolerance
     MaxIterations,  ///< budget spent: x is the least infeasible iterate, projected onto the bounds

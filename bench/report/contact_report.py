@@ -85,7 +85,7 @@ def speed_rows(bench, out_dir):
         for scene in common.SCENES:
             d, b = cold_frames(bench, f"{scene}-{regime}")
             runs = [r for r in whole_steps(out_dir, scene, regime) if "dantzig" in r and "bpp" in r]
-            step_means = run_ratios(runs, common.mean, 0)
+            step_means = common.finite(run_ratios(runs, common.mean, 0))
             rows.append({
                 "scene": scene, "regime": regime, "frames": len(b),
                 "steps": min((min(len(r["dantzig"][0]), len(r["bpp"][0])) for r in runs), default=0),
@@ -93,8 +93,7 @@ def speed_rows(bench, out_dir):
                 "cold_mean": ratio(common.mean(d), common.mean(b)),
                 "cold_slowest": ratio(slowest_percent(d), slowest_percent(b)),
                 "step_mean": median_ratio(step_means),
-                "step_mean_range": (min(common.finite(step_means), default=math.nan),
-                                    max(common.finite(step_means), default=math.nan)),
+                "step_mean_range": (min(step_means, default=math.nan), max(step_means, default=math.nan)),
                 "step_slowest": median_ratio(run_ratios(runs, slowest_percent, 0)),
                 "solve_mean": median_ratio(run_ratios(runs, common.mean, 1)),
                 "solve_slowest": median_ratio(run_ratios(runs, slowest_percent, 1)),

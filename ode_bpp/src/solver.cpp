@@ -312,7 +312,6 @@ Result invalid_input(const Problem& p, Strided x, std::string message) {
     Result r;
     r.status = Status::InvalidInput;
     r.message = std::move(message);
-    r.factor_error = std::numeric_limits<double>::quiet_NaN();
     if (x.data != nullptr && x.stride >= 1)
         for (int i = 0; i < p.n; ++i) x[i] = 0.0;
     return r;

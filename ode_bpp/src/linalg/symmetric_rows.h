@@ -68,8 +68,8 @@ public:
 
     /// The order of the rows: stored row i is row order()[i] of the matrix as built (empty:
     /// the identity). Set by assign(problem, perm) and the ordered assign_lower and carried along
-    /// by permute_into, so that
-    /// a problem's compressed rows may come in the solver's order (Problem::sparse).
+    /// by permute_into, so that a problem's compressed rows may come in the solver's order
+    /// (Problem::sparse).
     const std::vector<int>& order() const { return order_; }
     /// order()[i], or i when the order is the identity.
     int built_row(int i) const { return order_.empty() ? i : order_[i]; }

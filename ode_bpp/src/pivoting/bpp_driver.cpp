@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -116,7 +115,6 @@ Result finish(PolicyOutcome outcome, const FixedBoundSolver& fixed, const PivotC
     const int n = static_cast<int>(x.size());
     Result r;
     r.pivoting = counters;
-    r.factor_error = std::numeric_limits<double>::quiet_NaN();
     r.regularization = fixed.shift();
     x_out.assign(static_cast<std::size_t>(n), 0.0);
     if (outcome == PolicyOutcome::NotSpd) return r;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "unbounded_friction.h"
+
 namespace ode_bpp {
 
 namespace {
@@ -20,12 +22,7 @@ double inf_norm(ConstStrided v, int n) {
     return m;
 }
 
-// The definitions of is_unbounded_friction_row and effective_bounds, here so that the residual
-// loops inline them.
-bool unbounded_friction_row(const Problem& p, int i) {
-    return i >= p.nub && p.findex != nullptr && p.findex[i] >= 0 && p.hi[i] == kInf;
-}
-
+// The definition of effective_bounds, here so that the residual loops inline it.
 std::pair<double, double> bounds_at(const Problem& p, ConstStrided x, int i) {
     if (i < p.nub || unbounded_friction_row(p, i)) return {-kInf, kInf};
     if (p.findex != nullptr && p.findex[i] >= 0) {
@@ -85,10 +82,13 @@ Residuals summarize(const Problem& p, Diagonal diag, ConstStrided x, const std::
         const RowBounds rb = row_bounds(p, x, i);
         const double xi = x[i], wi = w[i], di = diag(i);
         const double step = xi - wi, scaled_step = xi - wi / di;
-        natural = std::max(natural, std::abs(xi - clamp_to(step, rb.effective)));
+        const double natural_i = std::abs(xi - clamp_to(step, rb.effective));
         const double scaled = std::abs(xi - clamp_to(scaled_step, rb.effective));
-        fixed_bound = std::max(fixed_bound, std::abs(xi - clamp_to(step, rb.implied)));
-        const double scaled_fixed = std::abs(xi - clamp_to(scaled_step, rb.implied));
+        // only a friction row's implied bounds differ from its effective ones (row_bounds)
+        const double fixed_i = rb.friction ? std::abs(xi - clamp_to(step, rb.implied)) : natural_i;
+        const double scaled_fixed = rb.friction ? std::abs(xi - clamp_to(scaled_step, rb.implied)) : scaled;
+        natural = std::max(natural, natural_i);
+        fixed_bound = std::max(fixed_bound, fixed_i);
         if (scaled > 0 || scaled_fixed > 0) {
             const double s_i = row_scale(p, diag, scale, i);
             if (scaled > 0) scaled_natural = std::max(scaled_natural, scaled / s_i);
@@ -119,25 +119,55 @@ struct DenseDiagonal {
 
 }  // namespace
 
-void dense_residual_vectors(const Problem& p, ConstStrided x, double* w, double* scale) {
-    for (int i = 0; i < p.n; ++i) {
+namespace {
+
+/// All rows: row k is row k.
+struct EveryRow {
+    int operator[](int k) const { return k; }
+};
+
+/// dense_residual_vectors on the rows row[0 .. count) (ascending) alone.
+template <typename Rows>
+void dense_residual_pass(const Problem& p, ConstStrided x, Rows row, int count, double* w, double* scale) {
+    for (int k = 0; k < count; ++k) {
+        const int i = row[k];
         w[i] = DenseDiagonal{p}(i) * x[i];
         scale[i] = std::abs(w[i]);
     }
-    for (int i = 1; i < p.n; ++i) {
-        const double* row = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
-        for (int j = 0; j < i; ++j) {
-            const double to_i = row[j] * x[j], to_j = row[j] * x[i];
-            w[i] += to_i;
-            scale[i] += std::abs(to_i);
+    // Row i's own terms are summed in registers: no earlier row adds to w_i, so each w_i still
+    // sums A(i,i) x_i, then A(i,j) x_j for j < i, then A(k,i) x_k for k > i (the same bits as
+    // one running sum in memory, which the compiler must reload after every store to w_j).
+    for (int k = 1; k < count; ++k) {
+        const int i = row[k];
+        const double* a_i = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
+        const double xi = x[i];
+        double wi = w[i], si = scale[i];
+        for (int l = 0; l < k; ++l) {
+            const int j = row[l];
+            const double to_i = a_i[j] * x[j], to_j = a_i[j] * xi;
+            wi += to_i;
+            si += std::abs(to_i);
             w[j] += to_j;
             scale[j] += std::abs(to_j);
         }
+        w[i] = wi;
+        scale[i] = si;
     }
-    for (int i = 0; i < p.n; ++i) {
+    for (int k = 0; k < count; ++k) {
+        const int i = row[k];
         w[i] -= p.b[i];
         scale[i] += std::abs(p.b[i]);
     }
+}
+
+}  // namespace
+
+void dense_residual_vectors(const Problem& p, ConstStrided x, double* w, double* scale) {
+    dense_residual_pass(p, x, EveryRow{}, p.n, w, scale);
+}
+
+void dense_residual_vectors_on(const Problem& p, ConstStrided x, const int* rows, int count, double* w, double* scale) {
+    dense_residual_pass(p, x, rows, count, w, scale);
 }
 
 namespace {

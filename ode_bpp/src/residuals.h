@@ -41,6 +41,13 @@ Residuals dense_residuals_from(const Problem& problem, ConstStrided x, const std
 /// increasing column, then b). O(n^2), no allocation.
 void dense_residual_vectors(const Problem& problem, ConstStrided x, double* w, double* scale);
 
+/// dense_residual_vectors on the rows rows[0 .. count) alone (ascending, original order), where
+/// x is 0 on every other row: w and scale of those rows, each summed in the same order as
+/// dense_residual_vectors sums it, without the exact zeros the other rows add (a sum of 0 may
+/// come out -0 instead of +0). The entries of the other rows are not written. O(count^2).
+void dense_residual_vectors_on(const Problem& problem, ConstStrided x, const int* rows, int count, double* w,
+                               double* scale);
+
 /// As residual_vectors(problem, x, w, scale), from A = linalg::SymmetricRows(problem, {}) or
 /// problem.sparse (stored in any order; w and scale come in the problem's); each
 /// row summed as SymmetricRows::multiply_with_scale sums it, then b: the pivoting loop's w and

@@ -9,7 +9,7 @@ namespace ode_bpp {
 bool has_unbounded_friction(const Problem& problem) {
     if (problem.findex == nullptr) return false;
     for (int i = problem.nub; i < problem.n; ++i)
-        if (is_unbounded_friction_row(problem, i)) return true;
+        if (unbounded_friction_row(problem, i)) return true;
     return false;
 }
 
@@ -19,7 +19,7 @@ Problem UnboundedFriction::view(const Problem& problem) {
     lo_.resize(n);
     hi_.resize(n);
     for (int i = 0; i < problem.n; ++i) {
-        const bool unbounded = is_unbounded_friction_row(problem, i);
+        const bool unbounded = unbounded_friction_row(problem, i);
         lo_[i] = unbounded ? -std::numeric_limits<double>::infinity() : problem.lo[i];
         hi_[i] = problem.hi[i];  // +inf for the rows turned unbounded
         if (unbounded) findex_[i] = -1;

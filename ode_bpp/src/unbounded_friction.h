@@ -6,11 +6,19 @@
 // Index space: the caller's original row order; only findex, lo and hi change.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "ode_bpp/solver.h"
 
 namespace ode_bpp {
+
+/// Row i is a friction row (findex >= 0, at or after nub) with mu = hi = +inf: the definition of
+/// is_unbounded_friction_row (ode_bpp/residuals.h), inline for the loops that test every row.
+inline bool unbounded_friction_row(const Problem& problem, int i) {
+    return i >= problem.nub && problem.findex != nullptr && problem.findex[i] >= 0 &&
+           problem.hi[i] == std::numeric_limits<double>::infinity();
+}
 
 /// True when some friction row (findex >= 0, at or after nub) has mu = hi = +inf. O(n).
 bool has_unbounded_friction(const Problem& problem);

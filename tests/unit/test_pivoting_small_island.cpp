@@ -10,6 +10,7 @@
 #include "ode_bpp/solver.h"
 #include "ode_bpp/validation.h"
 #include "pivoting/small_island.h"
+#include "residuals.h"
 #include "problems/generators.h"
 #include "problems/named.h"
 #include "problems/vectors.h"
@@ -120,6 +121,31 @@ TEST(SmallIsland, HandsAnUnfinishedIslandToTheGeneralDriverAndCountsItsSteps) {
     const Result b = run_general(p, general, o);
     EXPECT_EQ(a.status, b.status);
     EXPECT_EQ(a.pivoting.pivots, b.pivoting.pivots + 1);  // its one step, then the general driver's
+}
+
+/// Frozen friction's first solve refreshes w on the rows that are not pinned friction rows alone
+/// (residuals.h, dense_residual_vectors_on): with x = 0 on the others, their w and scale are the
+/// full pass's, bit for bit up to the sign of a zero, and the other rows are left as they were.
+TEST(SmallIsland, ResidualPassOnSomeRowsMatchesTheFullPassThere) {
+    const auto p = problems::random_boxed_mlcp(12, 2, 3, 1e4, 11);
+    std::vector<int> rows;
+    std::vector<double> x(12, 0.0);
+    for (int i = 0; i < 12; ++i)
+        if (p.findex[i] < 0) {
+            rows.push_back(i);
+            x[i] = 0.25 * (i + 1) * (i % 2 == 0 ? 1 : -1);
+        }
+    ASSERT_GT(rows.size(), 2u);
+    ASSERT_LT(rows.size(), 12u);
+    std::vector<double> w_all(12), scale_all(12), w(12, 7.0), scale(12, 7.0);
+    dense_residual_vectors(p.view(), ConstStrided{x.data(), 1}, w_all.data(), scale_all.data());
+    dense_residual_vectors_on(p.view(), ConstStrided{x.data(), 1}, rows.data(), static_cast<int>(rows.size()), w.data(),
+                              scale.data());
+    for (int i = 0; i < 12; ++i) {
+        const bool on = std::find(rows.begin(), rows.end(), i) != rows.end();
+        EXPECT_EQ(w[i], on ? w_all[i] : 7.0) << i;
+        EXPECT_EQ(scale[i], on ? scale_all[i] : 7.0) << i;
+    }
 }
 
 TEST(SmallIsland, ReportsInvalidMatricesAsValidateDoes) {

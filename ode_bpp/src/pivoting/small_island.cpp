@@ -37,11 +37,13 @@ void at_least(std::vector<T>& v, std::size_t n) {
 
 /// Eq. 6 densely: x_F = A_FF^-1 (b_F - A_FT x_T) for the free rows ws.free[0..nf) (original
 /// order) with x_F = 0 on entry, A_FF factored afresh in ws.factor; false when A_FF is not
-/// positive definite. x: n entries, in and out. Each row of A_FF is factored as soon as it is
-/// gathered, and the forward solve's entry taken with it (linalg/dense_cholesky.h): one pass.
-bool solve_free_rows(const Problem& p, int nf, SmallIslandBuffers& ws, std::vector<double>& x) {
+/// positive definite. x: n entries, in and out; ws.loaded[0..nl): the rows of x_T that are not 0,
+/// ascending. Each row of A_FF is factored as soon as it is gathered, and the forward solve's
+/// entry taken with it (linalg/dense_cholesky.h): one pass.
+bool solve_free_rows(const Problem& p, int nf, int nl, SmallIslandBuffers& ws, std::vector<double>& x) {
     const int n = p.n;
     const int* free = ws.free.data();
+    const int* loaded = ws.loaded.data();
     double* a = ws.factor.data();
     double* y = ws.rhs.data();
     double* inverse_diagonal = ws.inverse_diagonal.data();
@@ -49,9 +51,7 @@ bool solve_free_rows(const Problem& p, int nf, SmallIslandBuffers& ws, std::vect
         const int i = free[k];
         const double* a_i = p.A + static_cast<std::ptrdiff_t>(i) * p.lda;
         double rhs = p.b[i];
-        if (nf < n)  // A_FT x_T; x_F is still 0
-            for (int j = 0; j < n; ++j)
-                if (x[j] != 0) rhs -= entry(p, i, j) * x[j];
+        for (int l = 0; l < nl; ++l) rhs -= entry(p, i, loaded[l]) * x[loaded[l]];  // A_FT x_T
         y[k] = rhs;
         double* row = a + static_cast<std::ptrdiff_t>(k) * n;
         for (int l = 0; l < k; ++l) row[l] = a_i[free[l]];
@@ -77,6 +77,8 @@ public:
         at_least(ws_.factor, static_cast<std::size_t>(n_) * n_);
         for (auto* v : {&ws_.rhs, &ws_.inverse_diagonal, &ws_.w, &ws_.scale, &ws_.lo, &ws_.hi}) at_least(*v, static_cast<std::size_t>(n_));
         at_least(ws_.free, static_cast<std::size_t>(n_));
+        at_least(ws_.loaded, static_cast<std::size_t>(n_));
+        at_least(ws_.unpinned, static_cast<std::size_t>(n_));
     }
 
     /// Frozen friction (Dantzig's semantics, as the driver's solve_frozen): friction rows held at
@@ -87,9 +89,13 @@ public:
         const bool friction = p_.findex != nullptr && std::any_of(p_.findex, p_.findex + n_, [](int f) { return f >= 0; });
         if (!friction) return converges(states, x);
         ws_.requested = states;
-        for (int i = 0; i < n_; ++i)
+        unpinned_ = 0;
+        for (int i = 0; i < n_; ++i) {
             if (is_friction_row(p_, i)) ws_.lo[i] = ws_.hi[i] = 0;
+            else ws_.unpinned[unpinned_++] = i;
+        }
         if (!converges(states, x)) return false;
+        unpinned_ = n_;
         for (int i = 0; i < n_; ++i) {
             if (!is_friction_row(p_, i)) continue;
             std::tie(ws_.lo[i], ws_.hi[i]) = effective_bounds(p_, ConstStrided{x.data(), 1}, i);
@@ -171,28 +177,32 @@ private:
     /// Eq. 6 densely: x_T at its bounds, L_FF L_FF^T = A_FF, x_F = A_FF^-1 (b_F - A_FT x_T); then
     /// w = A x - b and the row scales. False when a Cholesky pivot breaks down.
     bool solve_step(const std::vector<RowState>& states, std::vector<double>& x) {
-        int nf = 0, tight = 0;
+        int nf = 0, nl = 0, tight = 0;
         for (int i = 0; i < n_; ++i) {
             if (states[i] == RowState::Free) {
                 ws_.free[nf++] = i;
                 x[i] = 0;
             } else {
                 x[i] = states[i] == RowState::AtLo ? ws_.lo[i] : ws_.hi[i];
+                if (x[i] != 0) ws_.loaded[nl++] = i;
                 ++tight;
             }
         }
         ++r_.pivoting.pivots;
         ++r_.pivoting.refactor_steps;
         if (o_.record_steps) r_.pivoting.tight_per_step.push_back(tight);
-        if (nf > 0 && !solve_free_rows(p_, nf, ws_, x)) return false;
+        if (nf > 0 && !solve_free_rows(p_, nf, nl, ws_, x)) return false;
         refresh_w(x);
         return true;
     }
 
 
-    /// w = A x - b and the row scales |A||x| + |b| (residuals.h).
+    /// w = A x - b and the row scales |A||x| + |b| (residuals.h). In Frozen friction's first
+    /// solve only on the rows that are not friction rows: those are pinned at 0, so Eq. 4 never
+    /// reads their w, and their x adds nothing to the others'.
     void refresh_w(const std::vector<double>& x) {
-        dense_residual_vectors(p_, ConstStrided{x.data(), 1}, ws_.w.data(), ws_.scale.data());
+        if (unpinned_ == n_) dense_residual_vectors(p_, ConstStrided{x.data(), 1}, ws_.w.data(), ws_.scale.data());
+        else dense_residual_vectors_on(p_, ConstStrided{x.data(), 1}, ws_.unpinned.data(), unpinned_, ws_.w.data(), ws_.scale.data());
     }
 
     /// Eq. 4 row by row (classify_row.h).
@@ -268,6 +278,7 @@ private:
     SmallIslandBuffers& ws_;
     Result& r_;
     const int n_;
+    int unpinned_ = n_;  ///< refresh_w's rows: all, or ws_.unpinned[0 .. unpinned_) in the first solve
     int best_count_ = 0;
     double best_violation_ = kInf;
 };

@@ -28,7 +28,7 @@ namespace ode_bpp::pivoting {
 struct SmallIslandBuffers {
     std::vector<double> factor;   ///< n x n, row stride n: A_FF, then L_FF, in its leading block
     std::vector<double> rhs, inverse_diagonal, lo, hi, w, scale;  ///< inverse_diagonal: 1 / L_FF(k,k)
-    std::vector<int> free;
+    std::vector<int> free, loaded, unpinned;  ///< free rows, tight rows with x != 0, rows that are not pinned friction
     std::vector<RowState> requested, best_states, trial, kept_states;
     std::vector<double> kept_x, kept_w, kept_scale;
     Infeasibility inf, best_inf;

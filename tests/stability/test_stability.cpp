@@ -133,6 +133,7 @@ RunSpec cycling_run(int murty_after, double ratio, double cfm) {
     spec.cfm = cfm;
     spec.seconds = 3;
     spec.options.tuning.murty_after = murty_after;
+    spec.options.tuning.small_island_murty_after = murty_after;  // the pair's islands are small
     spec.options.tuning.rescue_after = 0;
     return spec;
 }

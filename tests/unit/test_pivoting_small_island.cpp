@@ -7,10 +7,12 @@
 #include <cmath>
 #include <limits>
 
+#include "ode_bpp/io.h"
 #include "ode_bpp/solver.h"
 #include "ode_bpp/validation.h"
 #include "pivoting/small_island.h"
 #include "residuals.h"
+#include "test_io_support.h"
 #include "problems/generators.h"
 #include "problems/named.h"
 #include "problems/vectors.h"
@@ -146,6 +148,41 @@ TEST(SmallIsland, ResidualPassOnSomeRowsMatchesTheFullPassThere) {
         EXPECT_EQ(w[i], on ? w_all[i] : 7.0) << i;
         EXPECT_EQ(scale[i], on ? scale_all[i] : 7.0) << i;
     }
+}
+
+/// A box on three coplanar contacts (tests/data/captured/README.md): its six friction rows have
+/// rank three, and the previous step's index set is the mirror of this one's (the third contact's
+/// two friction rows at the opposite bounds). Eq. 4 frees both, a block step then frees every
+/// redundant row and x swings by orders of magnitude. Murty's pivot at the first step that does
+/// not improve (Tuning::small_island_murty_after = 0) settles it in fewer steps than block steps
+/// with the general path's patience, and both reach the same answer.
+TEST(SmallIsland, MurtysPivotSettlesRedundantFrictionRowsFromAMirroredWarmStart) {
+    const ReadResult read = read_mlcp((io_test::data_dir() / "captured" / "friction-demo-mirrored-warm-start-9.mlcp").string());
+    ASSERT_TRUE(read.ok) << read.error;
+    const MlcpFile& f = read.file;
+    std::vector<double> cold(f.n), patient(f.n), eager(f.n);
+    const Result own = solve(f.view(), Options{}, cold.data());
+    ASSERT_EQ(own.status, Status::Converged) << own.message;
+    Start mirrored{own.states, {}};
+    int swapped = 0;
+    for (int i = 0; i < f.n; ++i) {
+        RowState& s = mirrored.states[i];
+        if (f.findex[i] < 0 || s == RowState::Free) continue;
+        s = s == RowState::AtLo ? RowState::AtHi : RowState::AtLo;
+        ++swapped;
+    }
+    ASSERT_EQ(swapped, 2);
+    Options o;
+    o.tuning.small_island_murty_after = 3;
+    const Result block = solve(f.view(), o, patient.data(), mirrored);
+    o.tuning.small_island_murty_after = 0;
+    const Result murty = solve(f.view(), o, eager.data(), mirrored);
+    ASSERT_EQ(block.status, Status::Converged) << block.message;
+    ASSERT_EQ(murty.status, Status::Converged) << murty.message;
+    EXPECT_GT(murty.pivoting.murty_pivots, 0);
+    EXPECT_LT(murty.pivoting.pivots, block.pivoting.pivots);
+    EXPECT_LT(max_abs_diff(eager, cold), 1e-9);
+    EXPECT_LT(max_abs_diff(patient, cold), 1e-9);
 }
 
 TEST(SmallIsland, ReportsInvalidMatricesAsValidateDoes) {

@@ -140,6 +140,13 @@ enum class RowState : std::int8_t {
 struct Tuning {
     /// Block steps without a fall in the number of infeasible rows before Murty's single pivot.
     int murty_after = 3;
+    /// The same on the small-island path (dense_island_rows). There every step refactors A_FF,
+    /// so a block step that does not lower the count is a factorization spent for nothing; and on
+    /// islands of nearly redundant friction rows (a box on three coplanar contacts, where A_FF has
+    /// a near null space) such a step frees the redundant rows together and swings x by orders of
+    /// magnitude, which the next block steps chase back and forth (docs/tuning.md). 0: Murty's
+    /// pivot at the first step that does not improve.
+    int small_island_murty_after = 0;
     /// Steps of the plain attempt of a fixed-bound solve. If it has not converged by then, the
     /// active-set method below goes on from its least infeasible iterate; where that does not
     /// finish, the solve starts again from its start through a regularization continuation

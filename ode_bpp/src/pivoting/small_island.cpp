@@ -138,12 +138,13 @@ private:
     }
 
     /// At most max_steps block steps from states (Júdice-Pires: the count of infeasible rows must
-    /// fall within murty_after steps, else Murty's single pivot on the largest infeasible index);
+    /// fall within small_island_murty_after steps, else Murty's single pivot on the largest
+    /// infeasible index);
     /// true when an index set satisfies Eq. 4 in every row. steps: out, the steps taken.
     bool pivot(std::vector<RowState>& states, std::vector<double>& x, int max_steps, int& steps) {
         normalize(states);
         int least_count = n_ + 1;
-        int block_steps_left = std::max(0, o_.tuning.murty_after);
+        int block_steps_left = std::max(0, o_.tuning.small_island_murty_after);
         bool in_murty = false;
         best_count_ = n_ + 1;
         for (steps = 0; steps < max_steps;) {
@@ -157,7 +158,7 @@ private:
             remember_if_best(inf, states);  // only Murty's phase reads it, after an infeasible step
             if (inf.count() < least_count) {
                 least_count = inf.count();
-                block_steps_left = std::max(0, o_.tuning.murty_after);
+                block_steps_left = std::max(0, o_.tuning.small_island_murty_after);
                 in_murty = false;
                 flip_all(inf, states);
             } else if (block_steps_left > 0) {

@@ -13,6 +13,10 @@
 //     had already been taken). Without it, or if Dantzig fails too, x = 0 and NotSpd.
 //  4. Any method whose answer holds a NaN or an infinity: treated as step 3 (Dantzig if allowed
 //     and not already used, else x = 0 and NotSpd). So x is never written non-finite.
+//  An island whose BPP factor would exceed Options::max_factor_entries never reaches steps 2-4:
+//  Options::pgs_iterations sweeps of projected Gauss-Seidel on the sparse A answer it (status
+//  FallbackUsed, fallback "pgs"), and a non-finite answer there is not handed to Dantzig, whose
+//  dense A would be larger still (x = 0, NotSpd).
 //  Budget exhaustion (MaxIterations) and inconsistent friction (FrictionNotConsistent) are not
 //  failures: x is the best finite iterate, within its bounds, and is returned as is.
 //
@@ -40,6 +44,7 @@
 #include "pivoting/bpp_driver.h"
 #include "pivoting/small_island.h"
 #include "linalg/symmetric_rows.h"
+#include "ordering/ordering_choice.h"
 #include "residuals.h"
 #include "unbounded_friction.h"
 #include "workspace_parts.h"
@@ -132,6 +137,32 @@ Result dispatch(const Problem& p, const linalg::SymmetricRows& A, const Options&
     return run_pgs(p, A.in_built_order(scratch), o, x);
 }
 
+/// True when a BPP method's factor of this island would hold more than
+/// Options::max_factor_entries entries (ordering::factor_entries; *entries: that count). An
+/// island within the limit as a dense triangle is not ordered to find out.
+bool factor_too_large(const Problem& p, const linalg::SymmetricRows& A, const Options& o,
+                      linalg::SymmetricRows& scratch, std::int64_t* entries) {
+    const auto n = static_cast<std::int64_t>(p.n);
+    if (!is_bpp(o.method) || o.max_factor_entries <= 0 || n * (n + 1) / 2 <= o.max_factor_entries) return false;
+    *entries = ordering::factor_entries(o.method, p, A.in_built_order(scratch));
+    return *entries > o.max_factor_entries;
+}
+
+/// Fallback::Pgs: Options::pgs_iterations sweeps on the sparse A for an island whose factor
+/// would exceed Options::max_factor_entries (`entries` of it). A: stored in any order.
+Result pgs_fallback(const Problem& p, const linalg::SymmetricRows& A, const Options& o, std::int64_t entries,
+                    std::vector<double>& x, linalg::SymmetricRows& scratch) {
+    Result r = run_pgs(p, A.in_built_order(scratch), o, x);
+    r.status = Status::FallbackUsed;
+    r.fallback = Fallback::Pgs;
+    std::ostringstream m;
+    m << "the Cholesky factor would hold " << entries << " entries, more than max_factor_entries = "
+      << o.max_factor_entries << "; answered by " << std::max(0, o.pgs_iterations)
+      << " sweeps of projected Gauss-Seidel on the sparse A";
+    r.message = m.str();
+    return r;
+}
+
 /// Steps 3-4 of the chain above; true when x was replaced. A: stored in any order (scratch holds
 /// it in the problem's for Dantzig).
 bool apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Options& o, Result& r,
@@ -139,7 +170,8 @@ bool apply_fallbacks(const Problem& p, const linalg::SymmetricRows& A, const Opt
     const bool failed = r.status == Status::NotSpd || !all_finite(x);
     if (!failed) return false;
     std::string reason = r.status == Status::NotSpd ? r.message : "the answer was not finite";
-    if (o.dantzig_fallback && o.method != Method::Dantzig) {
+    // an island too large for a factor is too large for Dantzig's dense A (n^2 entries) too
+    if (o.dantzig_fallback && o.method != Method::Dantzig && r.fallback != Fallback::Pgs) {
         std::vector<double> xd;
         const baselines::DantzigOutcome outcome = baselines::solve_dantzig(p, A.in_built_order(scratch), xd);
         if (outcome == baselines::DantzigOutcome::Solved && all_finite(xd)) {
@@ -343,6 +375,7 @@ const char* to_string(Fallback f) {
         case Fallback::Regularized: return "regularized";
         case Fallback::Dantzig: return "dantzig";
         case Fallback::RegularizedDantzig: return "regularized+dantzig";
+        case Fallback::Pgs: return "pgs";
     }
     return "unknown";
 }
@@ -407,7 +440,10 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
         return small_attempt;
     }
     if (A == nullptr) A = &rows_of(problem, parts.rows);
-    Result r = dispatch(problem, *A, options, start, answer, parts.bpp, parts.residuals, parts.rows);
+    std::int64_t entries = 0;
+    Result r = factor_too_large(problem, *A, options, parts.rows, &entries)
+                   ? pgs_fallback(problem, *A, options, entries, answer, parts.rows)
+                   : dispatch(problem, *A, options, start, answer, parts.bpp, parts.residuals, parts.rows);
     r.method = options.method;
     r.friction = options.friction;
     r.pivoting.pivots += small_attempt.pivoting.pivots;  // the steps of a small-island attempt that did not finish

@@ -115,5 +115,36 @@ TEST(SolverFallback, NearlySingularChainNeverProducesNonFiniteValues) {
     }
 }
 
+/// An island whose factor would exceed Options::max_factor_entries (here a 58-row chain with a
+/// limit below its envelope) is answered by projected Gauss-Seidel on the sparse A, says so, and
+/// keeps every bound; within the limit the same island is solved exactly. The dense methods are
+/// measured by their whole triangle.
+TEST(SolverFallback, IslandTooLargeForAFactorIsAnsweredByPgs) {
+    const auto p = problems::chain_mlcp(16, 4);
+    ASSERT_GT(p.n, 32);  // past the small-island path
+    for (Method m : kBppMethods) {
+        Options o;
+        o.max_factor_entries = 2 * p.n;  // below the chain's banded envelope
+        std::vector<double> x;
+        const Result r = run(p, m, x, o);
+        EXPECT_EQ(r.status, Status::FallbackUsed) << to_string(m) << ": " << r.message;
+        EXPECT_EQ(r.fallback, Fallback::Pgs) << to_string(m);
+        EXPECT_NE(r.message.find("max_factor_entries"), std::string::npos) << r.message;
+        EXPECT_EQ(r.pivoting.pivots, o.pgs_iterations);
+        ASSERT_TRUE(all_finite(x));
+        EXPECT_TRUE(std::isfinite(r.residuals.natural));
+        for (int i = p.nub; i < p.n; ++i)
+            if (p.findex[i] < 0) {
+                EXPECT_GE(x[i], p.lo[i]) << i;
+                EXPECT_LE(x[i], p.hi[i]) << i;
+            }
+        o.max_factor_entries = static_cast<std::int64_t>(p.n) * (p.n + 1) / 2;
+        const Result exact = run(p, m, x, o);
+        EXPECT_EQ(exact.status, Status::Converged) << to_string(m) << ": " << exact.message;
+        EXPECT_EQ(exact.fallback, Fallback::None);
+    }
+    EXPECT_STREQ(to_string(Fallback::Pgs), "pgs");
+}
+
 }  // namespace
 }  // namespace ode_bpp

@@ -124,8 +124,9 @@ enum class Fallback : std::int8_t {
     Regularized,         ///< solved on A + delta I after a Cholesky breakdown (Result::regularization)
     Dantzig,             ///< the method failed; ODE's Dantzig answered
     RegularizedDantzig,  ///< regularization did not rescue the method either; ODE's Dantzig answered
+    Pgs,                 ///< the island's factor would exceed Options::max_factor_entries; PGS answered
 };
-/// "none", "regularized", "dantzig", "regularized+dantzig".
+/// "none", "regularized", "dantzig", "regularized+dantzig", "pgs".
 ODE_BPP_API const char* to_string(Fallback f);
 
 /// Per-row state of an index set: the paper's F, T_lo and T_hi (Eq. 4).
@@ -209,8 +210,16 @@ struct Options {
     /// Relative tolerance: a row is infeasible when it breaks its bound by more than
     /// tol * (|A||x| + |b|)_i (scaled per row, never an absolute constant).
     double tolerance = 1e-9;
-    /// Projected Gauss-Seidel sweeps (Method::Pgs only).
+    /// Projected Gauss-Seidel sweeps (Method::Pgs, and the BPP methods' fallback below).
     int pgs_iterations = 35;
+    /// BPP methods: the most entries the Cholesky factor's storage may hold (its envelope in
+    /// the ordering, or n(n+1)/2 for the dense methods; the solve keeps about four arrays of
+    /// that size). An island whose factor would hold more (a pile of thousands of overlapping
+    /// bodies, whose envelope is nearly dense) is answered by pgs_iterations sweeps of projected
+    /// Gauss-Seidel on the sparse A instead, as dWorldQuickStep would answer it: status
+    /// FallbackUsed, fallback Pgs. Where even ODE's Dantzig would need a dense A of n^2 entries,
+    /// an exact solve would take minutes and gigabytes (docs/modelling.md). 0 or less: no limit.
+    std::int64_t max_factor_entries = std::int64_t{1} << 24;
     /// On failure of the method, finish with ODE's Dantzig if it is available.
     bool dantzig_fallback = true;
     /// Compute Table 4's ||L_deleted - chol(A_FF)||_F at the final index set (costly).

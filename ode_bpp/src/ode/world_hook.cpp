@@ -18,6 +18,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -165,7 +167,7 @@ void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
     ws.last = std::move(r);  // no copy of its vectors per island
 }
 
-dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
+dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
     const Method method = *static_cast<const Method*>(userdata);
     IslandScratch& scratch = thread_scratch();
     if (problem->joints != nullptr) row_keys(*problem, scratch.keys, scratch.contacts);
@@ -184,6 +186,21 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
     stats->fallback = fallback_name(r);
     keep_island(*problem, plan, known_rows, use_memory, status != dMLCPFailed, scratch, std::move(r));
     return status;
+}
+
+/// ODE's C code calls this: no exception may cross it. Memory that runs out (an island whose A
+/// alone outgrows it, docs/modelling.md) fails the island, which ODE then gives to its Dantzig,
+/// or, where that has no memory for its dense A either, answers with x = 0; x is not read then.
+dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
+    try {
+        return answer_island(problem, stats, userdata);
+    } catch (const std::bad_alloc&) {
+        stats->fallback = "out of memory";
+    } catch (const std::exception&) {
+        stats->fallback = "internal error";
+    }
+    stats->fallbacks = 1;
+    return dMLCPFailed;
 }
 
 /// A world's settings, warm-start memory and orderings end with it: a world created later may

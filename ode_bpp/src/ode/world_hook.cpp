@@ -90,6 +90,15 @@ bool has_bounded_rows(const dMLCP& p) {
     return false;
 }
 
+/// The rows' identities serve the warm-start memory (islands with a row that can be tight) and
+/// the ordering cache (islands past the small-island path). The path's bound is read from the
+/// default Tuning here, before the world's settings are: a world that raised it computes keys it
+/// does not use, one that lowered it leaves its unbounded islands between the two bounds to a
+/// fresh ordering at every step (time only, the answers are the same).
+bool wants_row_keys(const dMLCP& p, bool bounded) {
+    return p.joints != nullptr && (bounded || p.m > Tuning{}.dense_island_rows);
+}
+
 dMLCPStatus to_ode_status(const Result& r) {
     // an iterative method's answer after its fixed sweep count is its answer, as in quickstep
     if (r.method == Method::Pgs && r.status == Status::MaxIterations) return dMLCPSolved;
@@ -170,9 +179,11 @@ void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
 dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
     const Method method = *static_cast<const Method*>(userdata);
     IslandScratch& scratch = thread_scratch();
-    if (problem->joints != nullptr) row_keys(*problem, scratch.keys, scratch.contacts);
-    const bool known_rows = problem->joints != nullptr && !scratch.keys.empty();
-    const bool use_memory = known_rows && has_bounded_rows(*problem);
+    const bool bounded = has_bounded_rows(*problem);
+    const bool keyed = wants_row_keys(*problem, bounded);
+    if (keyed) row_keys(*problem, scratch.keys, scratch.contacts);
+    const bool known_rows = keyed && !scratch.keys.empty();
+    const bool use_memory = known_rows && bounded;
     const IslandPlan plan = plan_island(*problem, method, known_rows, use_memory, scratch);
     const Problem q = scratch.view.of(*problem, plan.small, scratch.start.ordering);
 

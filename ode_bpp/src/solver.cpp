@@ -150,8 +150,10 @@ bool factor_too_large(const Problem& p, const linalg::SymmetricRows& A, const Op
 
 /// Fallback::Pgs: Options::pgs_iterations sweeps on the sparse A for an island whose factor
 /// would exceed Options::max_factor_entries (`entries` of it). A: stored in any order.
+/// at_answer: out, emptied as dispatch empties it (PGS leaves no w at its answer).
 Result pgs_fallback(const Problem& p, const linalg::SymmetricRows& A, const Options& o, std::int64_t entries,
-                    std::vector<double>& x, linalg::SymmetricRows& scratch) {
+                    std::vector<double>& x, ResidualBuffers& at_answer, linalg::SymmetricRows& scratch) {
+    at_answer.w.clear();
     Result r = run_pgs(p, A.in_built_order(scratch), o, x);
     r.status = Status::FallbackUsed;
     r.fallback = Fallback::Pgs;
@@ -442,7 +444,7 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
     if (A == nullptr) A = &rows_of(problem, parts.rows);
     std::int64_t entries = 0;
     Result r = factor_too_large(problem, *A, options, parts.rows, &entries)
-                   ? pgs_fallback(problem, *A, options, entries, answer, parts.rows)
+                   ? pgs_fallback(problem, *A, options, entries, answer, parts.residuals, parts.rows)
                    : dispatch(problem, *A, options, start, answer, parts.bpp, parts.residuals, parts.rows);
     r.method = options.method;
     r.friction = options.friction;

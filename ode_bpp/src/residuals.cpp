@@ -117,10 +117,6 @@ struct DenseDiagonal {
     double operator()(int i) const { return p.A[static_cast<std::ptrdiff_t>(i) * p.lda + i]; }
 };
 
-}  // namespace
-
-namespace {
-
 /// All rows: row k is row k.
 struct EveryRow {
     int operator[](int k) const { return k; }

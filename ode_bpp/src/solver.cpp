@@ -137,24 +137,20 @@ Result dispatch(const Problem& p, const linalg::SymmetricRows& A, const Options&
     return run_pgs(p, A.in_built_order(scratch), o, x);
 }
 
-/// True when a BPP method's factor of this island would hold more than
-/// Options::max_factor_entries entries (ordering::factor_entries; *entries: that count). An
-/// island within the limit as a dense triangle is not ordered to find out.
-bool factor_too_large(const Problem& p, const linalg::SymmetricRows& A, const Options& o,
-                      linalg::SymmetricRows& scratch, std::int64_t* entries) {
+/// True when a BPP method's factor of this island might exceed Options::max_factor_entries: its
+/// dense triangle would. An island within the limit that way is not ordered to find out.
+bool factor_may_be_too_large(const Problem& p, const Options& o) {
     const auto n = static_cast<std::int64_t>(p.n);
-    if (!is_bpp(o.method) || o.max_factor_entries <= 0 || n * (n + 1) / 2 <= o.max_factor_entries) return false;
-    *entries = ordering::factor_entries(o.method, p, A.in_built_order(scratch));
-    return *entries > o.max_factor_entries;
+    return is_bpp(o.method) && o.max_factor_entries > 0 && n * (n + 1) / 2 > o.max_factor_entries;
 }
 
 /// Fallback::Pgs: Options::pgs_iterations sweeps on the sparse A for an island whose factor
-/// would exceed Options::max_factor_entries (`entries` of it). A: stored in any order.
+/// would exceed Options::max_factor_entries (`entries` of it). A: in the problem's order.
 /// at_answer: out, emptied as dispatch empties it (PGS leaves no w at its answer).
 Result pgs_fallback(const Problem& p, const linalg::SymmetricRows& A, const Options& o, std::int64_t entries,
-                    std::vector<double>& x, ResidualBuffers& at_answer, linalg::SymmetricRows& scratch) {
+                    std::vector<double>& x, ResidualBuffers& at_answer) {
     at_answer.w.clear();
-    Result r = run_pgs(p, A.in_built_order(scratch), o, x);
+    Result r = run_pgs(p, A, o, x);
     r.status = Status::FallbackUsed;
     r.fallback = Fallback::Pgs;
     std::ostringstream m;
@@ -442,9 +438,11 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
         return small_attempt;
     }
     if (A == nullptr) A = &rows_of(problem, parts.rows);
-    std::int64_t entries = 0;
-    Result r = factor_too_large(problem, *A, options, parts.rows, &entries)
-                   ? pgs_fallback(problem, *A, options, entries, answer, parts.residuals, parts.rows)
+    // A in the problem's order is built once, for both the factor's size and PGS
+    const linalg::SymmetricRows* built = factor_may_be_too_large(problem, options) ? &A->in_built_order(parts.rows) : nullptr;
+    const std::int64_t entries = built != nullptr ? ordering::factor_entries(options.method, problem, *built) : 0;
+    Result r = built != nullptr && entries > options.max_factor_entries
+                   ? pgs_fallback(problem, *built, options, entries, answer, parts.residuals)
                    : dispatch(problem, *A, options, start, answer, parts.bpp, parts.residuals, parts.rows);
     r.method = options.method;
     r.friction = options.friction;

@@ -44,7 +44,6 @@
 #include "pivoting/bpp_driver.h"
 #include "pivoting/small_island.h"
 #include "linalg/symmetric_rows.h"
-#include "ordering/ordering_choice.h"
 #include "residuals.h"
 #include "unbounded_friction.h"
 #include "workspace_parts.h"
@@ -438,12 +437,17 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
         return small_attempt;
     }
     if (A == nullptr) A = &rows_of(problem, parts.rows);
-    // A in the problem's order is built once, for both the factor's size and PGS
-    const linalg::SymmetricRows* built = factor_may_be_too_large(problem, options) ? &A->in_built_order(parts.rows) : nullptr;
-    const std::int64_t entries = built != nullptr ? ordering::factor_entries(options.method, problem, *built) : 0;
-    Result r = built != nullptr && entries > options.max_factor_entries
-                   ? pgs_fallback(problem, *built, options, entries, answer, parts.residuals)
-                   : dispatch(problem, *A, options, start, answer, parts.bpp, parts.residuals, parts.rows);
+    // the factor's size in the order the solve would factor in; an ordering chosen to find it
+    // out is handed on, so that the solve does not order A again
+    Start ordered;
+    const bool sized = factor_may_be_too_large(problem, options);
+    const std::int64_t entries =
+        sized ? pivoting::planned_factor_entries(problem, *A, options, start, parts.rows, ordered.ordering) : 0;
+    if (!ordered.ordering.empty()) ordered.states = start.states;
+    Result r = sized && entries > options.max_factor_entries
+                   ? pgs_fallback(problem, A->in_built_order(parts.rows), options, entries, answer, parts.residuals)
+                   : dispatch(problem, *A, options, ordered.ordering.empty() ? start : ordered, answer, parts.bpp,
+                              parts.residuals, parts.rows);
     r.method = options.method;
     r.friction = options.friction;
     r.pivoting.pivots += small_attempt.pivoting.pivots;  // the steps of a small-island attempt that did not finish

@@ -48,6 +48,7 @@ TEST(LinalgEnvelope, ShapeIsTheColumnSkylineOfTheProfile) {
                 if (first[i] <= k) expected = std::max(expected, i);
             EXPECT_EQ(shape.sky[k], expected) << "column " << k;
         }
+        EXPECT_EQ(SkylineShape::size_of_row_profile(first), shape.size());
         SkylineShape searched = shape;  // a shape without the index searches sky
         searched.first_column.clear();
         const SkylineShape dense = SkylineShape::dense(n);

@@ -6,6 +6,8 @@
 
 #include "ode_bpp/residuals.h"
 #include "ode_bpp/solver.h"
+#include "linalg/skyline.h"
+#include "linalg/symmetric_rows.h"
 #include "problems/generators.h"
 #include "problems/named.h"
 
@@ -148,6 +150,45 @@ TEST(SolverFallback, IslandTooLargeForAFactorIsAnsweredByPgs) {
         EXPECT_EQ(exact.fallback, Fallback::None);
     }
     EXPECT_STREQ(to_string(Fallback::Pgs), "pgs");
+}
+
+/// The limit is on the envelope of the factor the solve itself builds, in its own ordering:
+/// Bpp solves an island whose envelope is exactly max_factor_entries and hands one entry less to
+/// PGS; the ordering it picks to find out is the one it factors in (the same answer, bit for bit,
+/// as a solve without the limit).
+TEST(SolverFallback, FactorLimitIsTheEnvelopeOfTheSolvesOwnOrdering) {
+    const auto p = problems::chain_mlcp(16, 4);
+    std::vector<double> unlimited_x;
+    const Result unlimited = run(p, Method::Bpp, unlimited_x);
+    ASSERT_EQ(unlimited.status, Status::Converged);
+    ASSERT_FALSE(unlimited.ordering.empty());
+    const linalg::SymmetricRows A(p, {});
+    const auto envelope = static_cast<std::int64_t>(
+        linalg::SkylineShape::from_row_profile(A.row_profile_under(unlimited.ordering)).size());
+    ASSERT_LT(envelope, static_cast<std::int64_t>(p.n) * (p.n + 1) / 2);  // the limit is looked at
+    Options o;
+    o.max_factor_entries = envelope;
+    std::vector<double> x;
+    const Result at_limit = run(p, Method::Bpp, x, o);
+    EXPECT_EQ(at_limit.status, Status::Converged) << at_limit.message;
+    EXPECT_EQ(at_limit.ordering, unlimited.ordering);
+    EXPECT_EQ(x, unlimited_x);
+    EXPECT_EQ(at_limit.pivoting.pivots, unlimited.pivoting.pivots);
+    o.max_factor_entries = envelope - 1;
+    EXPECT_EQ(run(p, Method::Bpp, x, o).fallback, Fallback::Pgs);
+    // a given ordering is priced as given
+    Start given;
+    given.ordering.resize(static_cast<std::size_t>(p.n));
+    for (int i = 0; i < p.n; ++i) given.ordering[i] = p.n - 1 - i;
+    const auto given_envelope = static_cast<std::int64_t>(
+        linalg::SkylineShape::from_row_profile(A.row_profile_under(given.ordering)).size());
+    o.method = Method::Bpp;
+    o.max_factor_entries = given_envelope;
+    const Result within = solve(p, o, x.data(), given);
+    EXPECT_EQ(within.fallback, Fallback::None);
+    EXPECT_EQ(within.ordering, given.ordering);
+    o.max_factor_entries = given_envelope - 1;
+    EXPECT_EQ(solve(p, o, x.data(), given).fallback, Fallback::Pgs);
 }
 
 }  // namespace

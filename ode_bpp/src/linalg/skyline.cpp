@@ -15,27 +15,40 @@ std::vector<std::ptrdiff_t> packed_column_pointers(const std::vector<int>& sky) 
     return colptr;
 }
 
+
+/// The column profile of a row envelope: sky[k] = max{ i : first[i] <= k } (every row i >= k with
+/// first[i] <= k reaches column k), the running maximum of the last row starting at each column.
+std::vector<int> column_profile(const std::vector<int>& first) {
+    const int n = static_cast<int>(first.size());
+    std::vector<int> last_row_starting(first.size(), -1);
+    for (int i = 0; i < n; ++i) {
+        assert(0 <= first[i] && first[i] <= i);
+        last_row_starting[first[i]] = i;
+    }
+    int reach = -1;
+    for (int k = 0; k < n; ++k) {
+        reach = std::max({reach, last_row_starting[k], k});
+        last_row_starting[k] = reach;
+    }
+    return last_row_starting;
+}
+
 }  // namespace
 
 SkylineShape SkylineShape::from_row_profile(const std::vector<int>& first) {
     SkylineShape shape;
     shape.n = static_cast<int>(first.size());
-    // last_row_starting[j] = largest i with first[i] == j; sky is its running maximum,
-    // which is max{ i : first[i] <= k } (every row i >= k with first[i] <= k reaches column k).
-    std::vector<int> last_row_starting(first.size(), -1);
-    for (int i = 0; i < shape.n; ++i) {
-        assert(0 <= first[i] && first[i] <= i);
-        last_row_starting[first[i]] = i;
-    }
-    shape.sky.resize(first.size());
-    int reach = -1;
-    for (int k = 0; k < shape.n; ++k) {
-        reach = std::max({reach, last_row_starting[k], k});
-        shape.sky[k] = reach;
-    }
+    shape.sky = column_profile(first);
     shape.colptr = packed_column_pointers(shape.sky);
     shape.index_first_columns();
     return shape;
+}
+
+std::ptrdiff_t SkylineShape::size_of_row_profile(const std::vector<int>& first) {
+    const std::vector<int> sky = column_profile(first);
+    std::ptrdiff_t size = 0;
+    for (int k = 0; k < static_cast<int>(sky.size()); ++k) size += sky[k] - k + 1;
+    return size;
 }
 
 SkylineShape SkylineShape::dense(int n) {

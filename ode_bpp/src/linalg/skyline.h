@@ -25,6 +25,8 @@ struct SkylineShape {
     /// The shape of the envelope of a symmetric matrix given its row profile first[i] <= i
     /// (first non-zero column of row i in the lower triangle): sky[k] = max{ i : first[i] <= k }.
     static SkylineShape from_row_profile(const std::vector<int>& first);
+    /// from_row_profile(first).size() without the shape: O(n), nothing kept.
+    static std::ptrdiff_t size_of_row_profile(const std::vector<int>& first);
     /// Dense lower-triangular storage: sky[k] = n - 1 for every column (paper's "Downdating"
     /// without skyline uses this shape with the same kernels).
     static SkylineShape dense(int n);

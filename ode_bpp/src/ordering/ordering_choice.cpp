@@ -146,13 +146,6 @@ double flagged_rows_factor_bound(const linalg::SymmetricRows& A, const std::vect
     return bound;
 }
 
-std::int64_t factor_entries(Method method, const Problem& problem, const linalg::SymmetricRows& A) {
-    const auto n = static_cast<std::int64_t>(problem.n);
-    if (method != Method::Bpp && method != Method::BppSky) return n * (n + 1) / 2;
-    const std::vector<int> perm = choose_ordering(method, problem, A, {});
-    return static_cast<std::int64_t>(linalg::SkylineShape::from_row_profile(A.row_profile_under(perm)).size());
-}
-
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
                                  const std::vector<RowState>& warm_start, FirstSolve first) {
     if (method == Method::BppSky) return order_pair(problem, A).forward;

@@ -1,7 +1,6 @@
 // Which symmetric permutation each BPP method factors in (paper Sec. 3.4 and our variant).
 #pragma once
 
-#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -32,11 +31,6 @@ enum class FirstSolve {
 /// A: the problem's matrix in original order (for envelope sizes).
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
                                  const std::vector<RowState>& warm_start, FirstSolve first = FirstSolve::AsWarmStart);
-
-/// Entries of the Cholesky factor's storage for the method without a warm start: the envelope
-/// (linalg::SkylineShape::size) of A in choose_ordering's order for Bpp and BppSky, n(n+1)/2 for
-/// the dense methods. O(entries of A) for the first two. A: original order.
-std::int64_t factor_entries(Method method, const Problem& problem, const linalg::SymmetricRows& A);
 
 /// Warm-started solves take a few steps (two fixed-bound solves in Frozen mode).
 constexpr double kStepsPerWarmSolve = 3;

@@ -17,6 +17,7 @@
 #include "ordering/ordering_choice.h"
 #include "pivoting/tuning.h"
 #include "pivoting/strategies.h"
+#include "linalg/skyline.h"
 #include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::pivoting {
@@ -46,12 +47,25 @@ Method strategy_of(const Problem& p, const Options& o) {
     return o.method == Method::Bpp && p.n <= o.tuning.dense_island_rows ? Method::BppChol : o.method;
 }
 
+/// ordering::choose_ordering for this solve, hinted by the warm start where
+/// Tuning::order_tight_last asks. A: in the problem's order.
+std::vector<int> chosen_ordering(const Problem& p, const linalg::SymmetricRows& A, const Options& o, const Start& start,
+                                 Method strategy) {
+    static const std::vector<RowState> kNoHint;
+    const bool hint = o.tuning.order_tight_last;
+    const auto first = hint && o.friction == FrictionMode::Frozen ? ordering::FirstSolve::FrictionRowsTight
+                                                                   : ordering::FirstSolve::AsWarmStart;
+    return ordering::choose_ordering(strategy, p, A, hint ? start.states : kNoHint, first);
+}
+
+bool strategy_orders(Method strategy) { return strategy == Method::Bpp || strategy == Method::BppSky; }
+
 /// The symmetric permutation to factor in: the given one where the strategy orders and it is
 /// valid (the hook passes the previous step's), else ordering/ordering_choice.h's. A stored in
 /// that permutation already (ode/island_view.h assembles it so) is taken as it is.
 void order(const Problem& p, const linalg::SymmetricRows& stored_A, const Options& o, const Start& start,
            Method strategy, PermutedProblem& q) {
-    const bool orders = strategy == Method::Bpp || strategy == Method::BppSky;
+    const bool orders = strategy_orders(strategy);
     if (orders && !stored_A.order().empty() && stored_A.order() == start.ordering) {  // a permutation
         q.perm = start.ordering;
         q.A = &stored_A;
@@ -59,11 +73,7 @@ void order(const Problem& p, const linalg::SymmetricRows& stored_A, const Option
     }
     const bool given = orders && ordering::is_permutation(start.ordering, p.n);
     const linalg::SymmetricRows& A = stored_A.in_built_order(q.original_A);
-    static const std::vector<RowState> kNoHint;
-    const bool hint = o.tuning.order_tight_last;
-    const auto first = hint && o.friction == FrictionMode::Frozen ? ordering::FirstSolve::FrictionRowsTight
-                                                                   : ordering::FirstSolve::AsWarmStart;
-    q.perm = given ? start.ordering : ordering::choose_ordering(strategy, p, A, hint ? start.states : kNoHint, first);
+    q.perm = given ? start.ordering : chosen_ordering(p, A, o, start, strategy);
     q.A = &A;
     if (!is_identity(q.perm)) {
         A.permute_into(q.perm, q.permuted_A);
@@ -197,6 +207,26 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     r.message = message_of(outcome, fixed.shift(), options, r.pivoting.friction_rounds, note);
     if (options.compute_factor_error && outcome != PolicyOutcome::NotSpd) r.factor_error = q.solver->factor_error(tight_set(states));
     return r;
+}
+
+std::int64_t planned_factor_entries(const Problem& problem, const linalg::SymmetricRows& A, const Options& options,
+                                    const Start& start, linalg::SymmetricRows& scratch, std::vector<int>& chosen) {
+    chosen.clear();
+    const auto n = static_cast<std::int64_t>(problem.n);
+    const Method strategy = strategy_of(problem, options);
+    if (!strategy_orders(strategy)) return n * (n + 1) / 2;
+    const auto envelope = [](const std::vector<int>& first) {
+        return static_cast<std::int64_t>(linalg::SkylineShape::size_of_row_profile(first));
+    };
+    const auto envelope_under = [&envelope](const linalg::SymmetricRows& built, const std::vector<int>& perm) {
+        return envelope(is_identity(perm) ? built.row_profile() : built.row_profile_under(perm));
+    };
+    // the same three cases as order()
+    if (!A.order().empty() && A.order() == start.ordering) return envelope(A.row_profile());
+    const linalg::SymmetricRows& built = A.in_built_order(scratch);
+    if (ordering::is_permutation(start.ordering, problem.n)) return envelope_under(built, start.ordering);
+    chosen = chosen_ordering(problem, built, options, start, strategy);
+    return envelope_under(built, chosen);
 }
 
 }  // namespace ode_bpp::pivoting

@@ -3,6 +3,7 @@
 // optional up-front continuation and the regularize-on-breakdown retry around the pivoting loop.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -31,5 +32,15 @@ extern template class KeptBuffers<BppBuffers>;  // instantiated where BppBuffers
 /// unshifted problem, whose w the loop has computed already; empty otherwise.
 Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const Options& options, const Start& start,
                  std::vector<double>& x, BppWorkspace& workspace, ResidualBuffers& at_answer);
+
+/// Entries of the envelope (linalg::SkylineShape::size) that solve_bpp's factor of this problem
+/// would hold, in the permutation solve_bpp would factor in: A's stored order where
+/// start.ordering names it (O(n)), start.ordering where it is a permutation, else the one it
+/// would choose (ordering::choose_ordering with the same warm-start hint), returned in chosen so
+/// that a solve handed it as Start::ordering does not order A again (chosen is empty in the
+/// other cases). n(n+1)/2 for the strategies that factor densely. A: stored in any order;
+/// scratch: A in the problem's order where it is stored in another.
+std::int64_t planned_factor_entries(const Problem& problem, const linalg::SymmetricRows& A, const Options& options,
+                                    const Start& start, linalg::SymmetricRows& scratch, std::vector<int>& chosen);
 
 }  // namespace ode_bpp::pivoting

@@ -13,8 +13,9 @@ const std::vector<int> kBuiltOrder;  ///< the island's own row order
 
 /// True when order is a permutation of 0 .. n-1 other than the identity.
 bool is_reordering(const std::vector<int>& order, int n) {
-    return !order.empty() && ordering::is_permutation(order, n) &&
-           !std::is_sorted(order.begin(), order.end());
+    // sortedness first: it ends at the first descent, and the usual cached order of a chain is
+    // the identity, which the permutation test would mark row by row
+    return !order.empty() && !std::is_sorted(order.begin(), order.end()) && ordering::is_permutation(order, n);
 }
 
 }  // namespace

@@ -58,6 +58,13 @@ std::vector<int> chosen_ordering(const Problem& p, const linalg::SymmetricRows& 
     return ordering::choose_ordering(strategy, p, A, hint ? start.states : kNoHint, first);
 }
 
+/// True when A is stored in the permutation perm already: its order() (a permutation), or the
+/// identity for A stored as built.
+bool stored_in(const linalg::SymmetricRows& A, const std::vector<int>& perm, int n) {
+    if (!A.order().empty()) return A.order() == perm;
+    return static_cast<int>(perm.size()) == n && is_identity(perm);
+}
+
 bool strategy_orders(Method strategy) { return strategy == Method::Bpp || strategy == Method::BppSky; }
 
 /// The symmetric permutation to factor in: the given one where the strategy orders and it is
@@ -66,7 +73,7 @@ bool strategy_orders(Method strategy) { return strategy == Method::Bpp || strate
 void order(const Problem& p, const linalg::SymmetricRows& stored_A, const Options& o, const Start& start,
            Method strategy, PermutedProblem& q) {
     const bool orders = strategy_orders(strategy);
-    if (orders && !stored_A.order().empty() && stored_A.order() == start.ordering) {  // a permutation
+    if (orders && stored_in(stored_A, start.ordering, p.n)) {
         q.perm = start.ordering;
         q.A = &stored_A;
         return;
@@ -222,7 +229,7 @@ std::int64_t planned_factor_entries(const Problem& problem, const linalg::Symmet
         return envelope(is_identity(perm) ? built.row_profile() : built.row_profile_under(perm));
     };
     // the same three cases as order()
-    if (!A.order().empty() && A.order() == start.ordering) return envelope(A.row_profile());
+    if (stored_in(A, start.ordering, problem.n)) return envelope(A.row_profile());
     const linalg::SymmetricRows& built = A.in_built_order(scratch);
     if (ordering::is_permutation(start.ordering, problem.n)) return envelope_under(built, start.ordering);
     chosen = chosen_ordering(problem, built, options, start, strategy);

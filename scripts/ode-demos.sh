@@ -77,7 +77,7 @@ reason_not_run() {
 # reason_not_run's words for a demo that steps only with dWorldQuickStep (routed when QUICKSTEP=1)
 QUICK_ONLY="uses only dWorldQuickStep (the iterative solver; ode-bpp replaces the LCP of dWorldStep)"
 # Quick-step demos not routed, and why (no commas: the reason is a CSV field)
-declare -A NOT_ROUTED=([demo_space_stress]="drops 10000 overlapping spheres at once: one island of about 6 million rows; beyond any exact step (docs/modelling.md); under the address-space limit ODE's own collision (the SAP space's pair array) crashes first")
+declare -A NOT_ROUTED=([demo_space_stress]="drops 10000 overlapping spheres at once: islands of millions of rows, beyond any exact step; bpp answers them by PGS on J without forming A, about 12 s a frame (docs/modelling.md), too slow for this run, and Dantzig cannot form its dense A; under the address-space limit ODE's own collision (the SAP space's pair array) crashes first")
 
 # The demo's ELF program: libtool keeps it in .libs/ behind a wrapper script
 demo_program() {

@@ -230,4 +230,21 @@ Residuals dense_residuals_from(const Problem& p, ConstStrided x, const std::vect
     return summarize(p, DenseDiagonal{p}, x, w, scale, states);
 }
 
+std::vector<RowState> states_of(const Problem& p, const std::vector<double>& x) {
+    std::vector<RowState> states(static_cast<std::size_t>(p.n), RowState::Free);
+    const ConstStrided xs{x.data(), 1};
+    for (int i = 0; i < p.n; ++i) {
+        const auto [lo, hi] = effective_bounds(p, xs, i);
+        if (x[i] <= lo) states[i] = RowState::AtLo;
+        else if (x[i] >= hi) states[i] = RowState::AtHi;
+    }
+    return states;
+}
+
+Residuals residuals_from_vectors(const Problem& p, ConstStrided x, const ResidualBuffers& vectors,
+                                 const std::vector<RowState>* states) {
+    const std::vector<double>& diagonal = vectors.diagonal;
+    return summarize(p, [&diagonal](int i) { return diagonal[i]; }, x, vectors.w, vectors.scale, states);
+}
+
 }  // namespace ode_bpp

@@ -34,6 +34,17 @@ Residuals residuals_from(const Problem& problem, const linalg::SymmetricRows& A,
 Residuals dense_residuals_from(const Problem& problem, ConstStrided x, const std::vector<double>& w,
                                const std::vector<double>& scale, const std::vector<RowState>* states);
 
+/// The index set an answer x (n entries) describes: a row at its effective bound is tight (rows
+/// pinned at lo = hi count as at lo). For methods without one of their own (PGS, Dantzig).
+std::vector<RowState> states_of(const Problem& problem, const std::vector<double>& x);
+
+/// The residuals of x from vectors alone: w = A x - b, the row scales and A's diagonal (n entries
+/// each, the problem's order), for a caller that holds A in neither form (ode/jacobian_pgs.h).
+/// With scale = |A||x| + |b| these are compute_residuals' values; a larger scale lowers only the
+/// scaled residual (Residuals::scaled_natural). O(n).
+Residuals residuals_from_vectors(const Problem& problem, ConstStrided x, const ResidualBuffers& vectors,
+                                 const std::vector<RowState>* states);
+
 /// As residual_vectors(problem, x, w, scale) on a problem in the dense form (Problem::A), into
 /// w and scale of at least n entries each (entries from n on untouched): w = A x - b and
 /// scale = |A||x| + |b| from the lower triangle, each entry used for both of its rows, each row

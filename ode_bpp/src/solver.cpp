@@ -75,19 +75,6 @@ bool all_finite(const std::vector<double>& x) {
     return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
 }
 
-/// The index set an answer x describes: a row at its effective bound is tight (rows pinned at
-/// lo = hi count as at lo).
-std::vector<RowState> states_of(const Problem& p, const std::vector<double>& x) {
-    std::vector<RowState> states(static_cast<std::size_t>(p.n), RowState::Free);
-    const ConstStrided xs{x.data(), 1};
-    for (int i = 0; i < p.n; ++i) {
-        const auto [lo, hi] = effective_bounds(p, xs, i);
-        if (x[i] <= lo) states[i] = RowState::AtLo;
-        else if (x[i] >= hi) states[i] = RowState::AtHi;
-    }
-    return states;
-}
-
 int count_tight(const std::vector<RowState>& states) {
     return static_cast<int>(std::count_if(states.begin(), states.end(), [](RowState s) { return s != RowState::Free; }));
 }

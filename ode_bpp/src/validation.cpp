@@ -27,6 +27,16 @@ std::string describe(const char* name, double value) {
     return out.str();
 }
 
+/// n, b, lo, hi and nub: what every form of a problem has.
+ValidationResult check_vector_sizes(const Problem& p) {
+    if (p.n <= 0) return invalid("n = " + std::to_string(p.n) + ": the problem must have at least one row");
+    if (p.b.data == nullptr || p.lo.data == nullptr || p.hi.data == nullptr) return invalid("b, lo or hi is null");
+    if (p.b.stride < 1 || p.lo.stride < 1 || p.hi.stride < 1) return invalid("b, lo or hi has a stride < 1");
+    if (p.nub < 0 || p.nub > p.n)
+        return invalid("nub = " + std::to_string(p.nub) + " outside [0, n = " + std::to_string(p.n) + "]");
+    return {};
+}
+
 ValidationResult check_sizes(const Problem& p) {
     if (p.n <= 0) return invalid("n = " + std::to_string(p.n) + ": the problem must have at least one row");
     if (p.sparse != nullptr) {
@@ -36,11 +46,7 @@ ValidationResult check_sizes(const Problem& p) {
         if (p.A == nullptr) return invalid("A is null");
         if (p.lda < p.n) return invalid("lda = " + std::to_string(p.lda) + " < n = " + std::to_string(p.n));
     }
-    if (p.b.data == nullptr || p.lo.data == nullptr || p.hi.data == nullptr) return invalid("b, lo or hi is null");
-    if (p.b.stride < 1 || p.lo.stride < 1 || p.hi.stride < 1) return invalid("b, lo or hi has a stride < 1");
-    if (p.nub < 0 || p.nub > p.n)
-        return invalid("nub = " + std::to_string(p.nub) + " outside [0, n = " + std::to_string(p.n) + "]");
-    return {};
+    return check_vector_sizes(p);
 }
 
 ValidationResult not_finite(int i, int j) {
@@ -146,23 +152,28 @@ bool blocks_pass(const Problem& p) {
 /// True only where check_sizes, check_findex, check_bounds and check_blocks all pass, in one
 /// pass that builds no result or message: on islands of a few rows the four checks' results
 /// cost a tenth of the solve. A false sends the caller to those checks, which name the defect.
-bool structure_passes(const Problem& p) {
-    if (!check_sizes(p).valid) return false;
+bool structure_passes(const Problem& p, bool with_matrix) {
+    if (!(with_matrix ? check_sizes(p) : check_vector_sizes(p)).valid) return false;
     for (int i = 0; i < p.n; ++i)
         if (!row_passes(p, i)) return false;
     return blocks_pass(p);
 }
 
-}  // namespace
-
-ValidationResult validate_structure(const Problem& problem) {
-    if (structure_passes(problem)) return {};
-    for (auto check : {check_sizes, check_findex, check_bounds, check_blocks}) {
+/// validate_structure, with A's presence among its checks or not.
+ValidationResult structure_verdict(const Problem& problem, bool with_matrix) {
+    if (structure_passes(problem, with_matrix)) return {};
+    for (auto check : {with_matrix ? check_sizes : check_vector_sizes, check_findex, check_bounds, check_blocks}) {
         ValidationResult r = check(problem);
         if (!r.valid) return r;
     }
     return {};
 }
+
+}  // namespace
+
+ValidationResult validate_structure(const Problem& problem) { return structure_verdict(problem, true); }
+
+ValidationResult validate_rows(const Problem& problem) { return structure_verdict(problem, false); }
 
 namespace {
 

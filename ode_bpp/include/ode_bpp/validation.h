@@ -35,6 +35,11 @@ ODE_BPP_API ValidationResult validate(const Problem& problem);
 /// validate() without A's entries (sizes, bounds, findex, blocks). O(n).
 ODE_BPP_API ValidationResult validate_structure(const Problem& problem);
 
+/// validate_structure() for a problem whose A the caller holds in another form (an ODE island's
+/// J, J M^-1 and CFM, which a matrix-free method reads instead: ode/jacobian_pgs.h), so that
+/// A and lda are not looked at. O(n).
+ODE_BPP_API ValidationResult validate_rows(const Problem& problem);
+
 /// A's entries (lower triangle and diagonal): finite, diagonal > 0; the same first defect and
 /// message as validate() on the dense form. O(non-zeros).
 ODE_BPP_API ValidationResult validate_matrix(const linalg::SymmetricRows& A);

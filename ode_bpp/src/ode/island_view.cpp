@@ -21,8 +21,7 @@ bool is_reordering(const std::vector<int>& order, int n) {
 }  // namespace
 
 Problem IslandView::of(const dMLCP& p, bool dense_lower, const std::vector<int>& order) {
-    Problem q;
-    q.n = p.m;
+    Problem q = rows_of(p);
     q.A = p.A;
     q.lda = p.skip;
     // The buffers only grow: islands of changing sizes would otherwise pay a zero fill at every
@@ -37,6 +36,12 @@ Problem IslandView::of(const dMLCP& p, bool dense_lower, const std::vector<int>&
         assemble_rows(p, assembled_, assembly_, is_reordering(order, p.m) ? order : kBuiltOrder);
         q.sparse = &assembled_;
     }
+    return q;
+}
+
+Problem IslandView::rows_of(const dMLCP& p) {
+    Problem q;
+    q.n = p.m;
     q.b = ConstStrided{p.pairsbx, 2};
     q.lo = ConstStrided{p.pairslh, 2};
     q.hi = ConstStrided{p.pairslh + 1, 2};

@@ -28,6 +28,9 @@ public:
     /// rows are stored in it (linalg::SymmetricRows::order) when it is a permutation of the
     /// island's rows other than the identity.
     Problem of(const dMLCP& island, bool dense_lower = false, const std::vector<int>& order = {});
+    /// The view of `island` without A (A, sparse null): b, lo, hi, findex, nub and the joints'
+    /// blocks, for a method that reads the sparse form itself (ode/jacobian_pgs.h). O(rows).
+    Problem rows_of(const dMLCP& island);
 
 private:
     std::vector<int> block_row_, block_body_;

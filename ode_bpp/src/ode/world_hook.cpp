@@ -6,6 +6,9 @@
 // J, J M^-1 and the CFM and never forms its dense A; A is assembled into compressed rows in
 // O(entries) (ode/assemble.h). A dense A (an ODE without the sparse form) is read in place.
 //
+// An island whose A alone would pass Options::max_factor_entries is not assembled: projected
+// Gauss-Seidel sweeps J and J M^-1 instead (ode/jacobian_pgs.h), fallback "pgs".
+//
 // Fallback chain of one island (reported in dMLCPIslandStats::fallback):
 //   1. the solver's own chain (regularize and retry, then ODE's Dantzig: Status::FallbackUsed);
 //   2. a result that is not usable (max iterations, not SPD, invalid input): we return
@@ -14,6 +17,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -27,6 +31,8 @@
 
 #include "linalg/symmetric_rows.h"
 #include "ode/island_view.h"
+#include "ode/jacobian_pgs.h"
+#include "ode_bpp/validation.h"
 #include "ode/ordering_cache.h"
 #include "ode/row_identity.h"
 #include "pivoting/small_island.h"
@@ -124,6 +130,8 @@ struct IslandScratch {
     ode::IslandView view;
     Start start;
     Workspace workspace;
+    std::vector<std::int64_t> rows_on_body;  ///< ode::coupled_entries_lower_bound's scratch
+    ode::JacobianPgsBuffers jacobian_pgs;
 };
 
 /// The hook's memory on the calling thread: ODE may step islands on several threads at once,
@@ -176,6 +184,41 @@ void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
     ws.last = std::move(r);  // no copy of its vectors per island
 }
 
+bool factors(Method m) { return m == Method::Bpp || m == Method::BppSky || m == Method::BppDown || m == Method::BppChol; }
+
+/// A's entries at least (ode::coupled_entries_lower_bound) where they exceed a factoring
+/// method's Options::max_factor_entries, so that its factor would too; 0 otherwise. Only an
+/// island whose dense triangle m (m + 1) / 2 exceeds the limit is counted (solver.cpp's rule).
+std::int64_t entries_past_the_limit(const dMLCP& island, const Options& o, IslandScratch& scratch) {
+    if (!ode::has_sparse_form(island) || o.max_factor_entries <= 0 || !factors(o.method)) return 0;
+    const auto m = static_cast<std::int64_t>(island.m);
+    if (m * (m + 1) / 2 <= o.max_factor_entries) return 0;
+    const std::int64_t entries = ode::coupled_entries_lower_bound(island, scratch.rows_on_body);
+    return entries > o.max_factor_entries ? entries : 0;
+}
+
+/// An island whose A alone would pass the factor limit, answered without forming A
+/// (ode/jacobian_pgs.h; docs/modelling.md, "Islands too large for an exact step").
+Result answer_without_matrix(const dMLCP& island, const Options& o, std::int64_t entries, IslandScratch& scratch) {
+    const Problem q = scratch.view.rows_of(island);
+    ValidationResult v = validate_rows(q);
+    if (v.valid && ode::first_untiled_joint(island) >= 0)
+        v = {false, "joint " + std::to_string(ode::first_untiled_joint(island)) + "'s rows do not follow the previous joint's"};
+    const Strided x{island.pairsbx + 1, 2};
+    if (!v.valid) {
+        Result r;
+        r.method = o.method;
+        r.status = Status::InvalidInput;
+        r.message = v.message;
+        for (int i = 0; i < island.m; ++i) x[i] = 0;
+        return r;
+    }
+    Result r = ode::solve_by_jacobian_pgs(island, q, o, entries, x, scratch.jacobian_pgs);
+    r.method = o.method;
+    r.friction = o.friction;
+    return r;
+}
+
 dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
     const Method method = *static_cast<const Method*>(userdata);
     IslandScratch& scratch = thread_scratch();
@@ -185,10 +228,14 @@ dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* u
     const bool known_rows = keyed && !scratch.keys.empty();
     const bool use_memory = known_rows && bounded;
     const IslandPlan plan = plan_island(*problem, method, known_rows, use_memory, scratch);
-    const Problem q = scratch.view.of(*problem, plan.small, scratch.start.ordering);
-
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
-    Result r = solve(q, plan.options, Strided{problem->pairsbx + 1, 2}, scratch.start, scratch.workspace);
+    Result r;
+    if (const std::int64_t entries = entries_past_the_limit(*problem, plan.options, scratch); entries > 0) {
+        r = answer_without_matrix(*problem, plan.options, entries, scratch);
+    } else {
+        const Problem q = scratch.view.of(*problem, plan.small, scratch.start.ordering);
+        r = solve(q, plan.options, Strided{problem->pairsbx + 1, 2}, scratch.start, scratch.workspace);
+    }
 
     const dMLCPStatus status = to_ode_status(r);
     stats->pivots = r.pivoting.pivots;

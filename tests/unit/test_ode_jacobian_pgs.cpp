@@ -127,7 +127,7 @@ TEST(OdeJacobianPgs, BoundsTheAssembledEntriesFromBelow) {
     }
 }
 
-TEST(OdeJacobianPgs, RefusesNonFiniteInputAndANonPositiveDiagonalByRow) {
+TEST(OdeJacobianPgs, RefusesNonFiniteInputANonPositiveDiagonalAndABadBodyByName) {
     JacobianPgsBuffers buffers;
     const Options o;
     {
@@ -150,6 +150,13 @@ TEST(OdeJacobianPgs, RefusesNonFiniteInputAndANonPositiveDiagonalByRow) {
         const Result r = solve_by_jacobian_pgs(star.p, star.problem(), o, 1, star.x(), buffers);
         EXPECT_EQ(r.status, Status::InvalidInput);
         EXPECT_NE(r.message.find("A(4,4)"), std::string::npos) << r.message;
+    }
+    {
+        Star star(4, 3, 5);
+        star.joints[2].body[1] = star.p.nb;  // one past the island's bodies
+        const Result r = solve_by_jacobian_pgs(star.p, star.problem(), o, 1, star.x(), buffers);
+        EXPECT_EQ(r.status, Status::InvalidInput);
+        EXPECT_NE(r.message.find("joint 2"), std::string::npos) << r.message;
     }
 }
 

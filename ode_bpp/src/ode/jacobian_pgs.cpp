@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "ode_bpp/residuals.h"
 
@@ -97,6 +98,17 @@ void for_each_row(const dMLCP& island, Visit&& visit) {
     }
 }
 
+/// An empty message, or the first joint whose body is outside [-1, nb): the sweeps index the
+/// bodies' sums by it.
+std::string bodies_defect(const dMLCP& island) {
+    for (int k = 0; k < island.nj; ++k)
+        for (int body : island.joints[k].body)
+            if (body < -1 || body >= island.nb)
+                return "joint " + std::to_string(k) + ": body " + std::to_string(body) + " outside [-1, " +
+                       std::to_string(island.nb) + ")";
+    return {};
+}
+
 /// A's diagonal into diagonal (m entries); an empty message, or the first row whose J, J M^-1 or
 /// cfm is not finite or whose A_ii is not positive.
 std::string diagonal_of(const dMLCP& island, std::vector<double>& diagonal) {
@@ -184,6 +196,7 @@ std::int64_t coupled_entries_lower_bound(const dMLCP& island, std::vector<std::i
 Result solve_by_jacobian_pgs(const dMLCP& island, const Problem& problem, const Options& options, std::int64_t entries,
                              Strided x, JacobianPgsBuffers& ws) {
     const int m = island.m;
+    if (const std::string defect = bodies_defect(island); !defect.empty()) return failed(Status::InvalidInput, defect, m, x);
     if (const std::string defect = diagonal_of(island, ws.vectors.diagonal); !defect.empty())
         return failed(Status::InvalidInput, defect, m, x);
     ws.x.assign(static_cast<std::size_t>(m), 0.0);

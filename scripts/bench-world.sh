@@ -91,8 +91,10 @@ for spec in "${ACCURACY[@]}"; do
   IFS=: read -r links reference <<< "$spec"
   for method in bpp "$reference"; do
     grep -q "^$links,[0-9]*,$method," "$WORLD/chain-accuracy.csv" 2>/dev/null && continue  # bpp once per length
+    # the reference exact whatever its factor's size (a dense one past max_factor_entries would be PGS's)
+    exact=(); [[ "$method" != bpp ]] && exact=(--exact)
     run "accuracy-$links-$method" "$STEP" chain --links "$links" --method "$method" --ratio "$CHAIN_RATIO" \
-      --steps "$ACCURACY_STEPS" --csv "$WORLD/chain-accuracy.csv"
+      --steps "$ACCURACY_STEPS" "${exact[@]}" --csv "$WORLD/chain-accuracy.csv"
     say "   chain of $links links: $method"
   done
 done

@@ -3,9 +3,11 @@
 // sparse world step (docs/benchmarks.md). Each call appends CSV rows to --csv FILE (the header
 // first when the file is new or empty) and prints progress on stderr.
 //
-//   bench_world_step chain   --links N --method M [--steps K] [--ratio R] [--cfm X] --csv FILE
+//   bench_world_step chain   --links N --method M [--steps K] [--ratio R] [--cfm X] [--exact] --csv FILE
 //       the sweeps' HangingChain (N ball-jointed links, a 100 kg load; sweep_scenes.h) with one
-//       method in this process, so that the peak memory it reports is that method's alone
+//       method in this process, so that the peak memory it reports is that method's alone;
+//       --exact: no factor limit (Options::max_factor_entries 0), for a reference whose dense
+//       factor would pass it and be answered by PGS instead
 //   bench_world_step scene   --scene NAME --methods M,M,... [--seconds S] --csv FILE
 //   bench_world_step islands --kind contact|marble|chain|stack [--size K] [--copies C]
 //                            --methods M,M,... [--steps K] --csv FILE
@@ -59,7 +61,7 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 [[noreturn]] void usage(const std::string& why) {
     std::cerr << "bench_world_step: " << why << "\n"
-              << "usage: bench_world_step chain --links N --method M [--steps K] [--ratio R] [--cfm X] --csv FILE\n"
+              << "usage: bench_world_step chain --links N --method M [--steps K] [--ratio R] [--cfm X] [--exact] --csv FILE\n"
                  "       bench_world_step scene --scene NAME --methods M,M,... [--seconds S] --csv FILE\n"
                  "       bench_world_step islands --kind contact|marble|chain|stack [--size K] [--copies C]\n"
                  "                        --methods M,M,... [--steps K] --csv FILE\n"
@@ -78,6 +80,7 @@ struct Cli {
     std::string kind;
     int links = 0, size = 1, copies = 1, steps = 0;
     double seconds = 0, ratio = 1000, cfm = 1e-10;
+    bool exact = false;  ///< chain: no factor limit
 };
 
 double parse_number(const std::string& flag, const std::string& text) {
@@ -127,6 +130,7 @@ Cli parse_cli(int argc, char** argv) {
         else if (arg == "--seconds") cli.seconds = parse_number(arg, value());
         else if (arg == "--ratio") cli.ratio = parse_number(arg, value());
         else if (arg == "--cfm") cli.cfm = parse_number(arg, value());
+        else if (arg == "--exact") cli.exact = true;
         else usage("unknown option " + arg);
     }
     if (cli.csv.empty()) usage("--csv FILE is required");
@@ -248,6 +252,11 @@ int run_chain(const Cli& cli) {
     params.cfm = cli.cfm;
     std::vector<Contestant> one;
     one.push_back(make_contestant(cli.methods[0], params));
+    if (cli.exact) {
+        ode_bpp::WorldSettings settings = ode_bpp::world_settings(one[0].world->world());
+        settings.options.max_factor_entries = 0;
+        ode_bpp::set_world_settings(one[0].world->world(), settings);
+    }
     const ode_bpp::scenes::SweepLayout layout = ode_bpp::scenes::build_sweep_scene(
         *one[0].world, {ode_bpp::scenes::SweepPattern::HangingChain, cli.ratio, cli.links});
     const long steps = cli.steps > 0 ? cli.steps : 120;

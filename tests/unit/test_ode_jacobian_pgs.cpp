@@ -127,7 +127,7 @@ TEST(OdeJacobianPgs, BoundsTheAssembledEntriesFromBelow) {
     }
 }
 
-TEST(OdeJacobianPgs, RefusesNonFiniteInputANonPositiveDiagonalAndABadBodyByName) {
+TEST(OdeJacobianPgs, RefusesBadStructureNonFiniteInputAndANonPositiveDiagonalByName) {
     JacobianPgsBuffers buffers;
     const Options o;
     {
@@ -157,6 +157,18 @@ TEST(OdeJacobianPgs, RefusesNonFiniteInputANonPositiveDiagonalAndABadBodyByName)
         const Result r = solve_by_jacobian_pgs(star.p, star.problem(), o, 1, star.x(), buffers);
         EXPECT_EQ(r.status, Status::InvalidInput);
         EXPECT_NE(r.message.find("joint 2"), std::string::npos) << r.message;
+    }
+    {
+        Star star(4, 3, 6);
+        star.joints[1].row += 1;  // a gap before joint 1, and joint 4 past the last row
+        const Result r = solve_by_jacobian_pgs(star.p, star.problem(), o, 1, star.x(), buffers);
+        EXPECT_EQ(r.status, Status::InvalidInput);
+        EXPECT_NE(r.message.find("joint 1"), std::string::npos) << r.message;
+        star.joints[1].row -= 1;
+        star.p.m -= 1;  // the joints run one row past m
+        const Result past = solve_by_jacobian_pgs(star.p, star.problem(), o, 1, star.x(), buffers);
+        EXPECT_EQ(past.status, Status::InvalidInput);
+        EXPECT_NE(past.message.find("not at m"), std::string::npos) << past.message;
     }
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "ode/island_view.h"
 #include "ode_bpp/residuals.h"
 
 namespace ode_bpp::ode {
@@ -98,9 +99,16 @@ void for_each_row(const dMLCP& island, Visit&& visit) {
     }
 }
 
-/// An empty message, or the first joint whose body is outside [-1, nb): the sweeps index the
-/// bodies' sums by it.
-std::string bodies_defect(const dMLCP& island) {
+/// An empty message, or what keeps the sweeps from reading the island safely: joints that do not
+/// tile rows 0 .. m-1 in order (each row's J is found through its joint), or a body outside
+/// [-1, nb) (the bodies' sums are indexed by it).
+std::string structure_defect(const dMLCP& island) {
+    if (island.joints == nullptr || island.nj <= 0) return "the island has no joints";
+    if (const int k = first_untiled_joint(island); k >= 0)
+        return "joint " + std::to_string(k) + "'s rows do not follow the previous joint's";
+    const dMLCPJoint& last = island.joints[island.nj - 1];
+    if (last.row + last.m != island.m)
+        return "the joints' rows end at " + std::to_string(last.row + last.m) + ", not at m = " + std::to_string(island.m);
     for (int k = 0; k < island.nj; ++k)
         for (int body : island.joints[k].body)
             if (body < -1 || body >= island.nb)
@@ -196,7 +204,8 @@ std::int64_t coupled_entries_lower_bound(const dMLCP& island, std::vector<std::i
 Result solve_by_jacobian_pgs(const dMLCP& island, const Problem& problem, const Options& options, std::int64_t entries,
                              Strided x, JacobianPgsBuffers& ws) {
     const int m = island.m;
-    if (const std::string defect = bodies_defect(island); !defect.empty()) return failed(Status::InvalidInput, defect, m, x);
+    if (const std::string defect = structure_defect(island); !defect.empty())
+        return failed(Status::InvalidInput, defect, m, x);
     if (const std::string defect = diagonal_of(island, ws.vectors.diagonal); !defect.empty())
         return failed(Status::InvalidInput, defect, m, x);
     ws.x.assign(static_cast<std::size_t>(m), 0.0);

@@ -201,9 +201,7 @@ std::int64_t entries_past_the_limit(const dMLCP& island, const Options& o, Islan
 /// (ode/jacobian_pgs.h; docs/modelling.md, "Islands too large for an exact step").
 Result answer_without_matrix(const dMLCP& island, const Options& o, std::int64_t entries, IslandScratch& scratch) {
     const Problem q = scratch.view.rows_of(island);
-    ValidationResult v = validate_rows(q);
-    if (const int k = ode::first_untiled_joint(island); v.valid && k >= 0)
-        v = {false, "joint " + std::to_string(k) + "'s rows do not follow the previous joint's"};
+    const ValidationResult v = validate_rows(q);
     const Strided x{island.pairsbx + 1, 2};
     if (!v.valid) {
         Result r;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "row_bounds.h"
 #include "unbounded_friction.h"
 
 namespace ode_bpp {
@@ -20,17 +21,6 @@ double inf_norm(ConstStrided v, int n) {
     double m = 0;
     for (int i = 0; i < n; ++i) m = std::max(m, std::abs(v[i]));
     return m;
-}
-
-// The definition of effective_bounds, here so that the residual loops inline it.
-std::pair<double, double> bounds_at(const Problem& p, ConstStrided x, int i) {
-    if (i < p.nub || unbounded_friction_row(p, i)) return {-kInf, kInf};
-    if (p.findex != nullptr && p.findex[i] >= 0) {
-        const double normal = x[p.findex[i]];
-        const double bound = normal == 0 ? 0.0 : std::abs(p.hi[i] * normal);
-        return {-bound, bound};
-    }
-    return {p.lo[i], p.hi[i]};
 }
 
 /// s_i = scale_i / A_ii in units of x; for a friction row at least |mu_i| s_n of its normal n,

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "ode_bpp/residuals.h"
+#include "row_bounds.h"
 #include "linalg/symmetric_rows.h"
 
 namespace ode_bpp::baselines {
@@ -14,7 +15,7 @@ void solve_pgs(const Problem& p, const linalg::SymmetricRows& A, int sweeps, std
         for (int i = 0; i < p.n; ++i) {
             double w = A.diag(i) * x[i] - p.b[i];
             for (int k = A.row_begin(i); k < A.row_end(i); ++k) w += A.val(k) * x[A.col(k)];
-            const auto [lo, hi] = effective_bounds(p, xs, i);
+            const auto [lo, hi] = bounds_at(p, xs, i);
             x[i] = std::clamp(x[i] - w / A.diag(i), lo, hi);
         }
     }

@@ -7,6 +7,7 @@
 
 #include "ode/island_view.h"
 #include "ode_bpp/residuals.h"
+#include "row_bounds.h"
 
 namespace ode_bpp::ode {
 
@@ -138,7 +139,7 @@ void sweep(const dMLCP& island, const Problem& p, const std::vector<double>& dia
     const ConstStrided xs{x.data(), 1};
     for_each_row(island, [&](int i, const RowSides& s) {
         const double w = row_product(s, ws.impulse, island.cfm[i] * x[i]) - p.b[i];
-        const auto [lo, hi] = effective_bounds(p, xs, i);
+        const auto [lo, hi] = bounds_at(p, xs, i);
         const double next = std::clamp(x[i] - w / diagonal[i], lo, hi);
         add_row_impulse(s, next - x[i], ws.impulse);
         x[i] = next;

@@ -35,11 +35,6 @@ void earlier_neighbours(const dMLCP& p, const Incidence& inc, int joint, std::ve
     out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-/// Row r's Jacobian (or J M^-1) for side s (0: body[0], 1: body[1]) of its joint (<ode/mlcp.h>).
-const dReal* side_row(const dReal* base, int width, const dMLCPJoint& joint, int side, int r) {
-    const int index = 2 * joint.row + side * joint.m + (r - joint.row);
-    return base + static_cast<std::ptrdiff_t>(index) * width;
-}
 
 /// The six entries of a row of J M^-1 that meet J's six for one body (ODE pads each half to four).
 struct JinvMEntries {

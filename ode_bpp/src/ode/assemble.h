@@ -6,6 +6,7 @@
 
 #include <ode/mlcp.h>
 
+#include <cstddef>
 #include <vector>
 
 #include "linalg/symmetric_rows.h"
@@ -61,6 +62,14 @@ struct AssemblyBuffers {
 
 /// True when the island comes in the sparse form (J, JinvM, cfm and the joints, A null).
 bool has_sparse_form(const dMLCP& island);
+
+/// Row r's Jacobian (or J M^-1: width dMLCP_J_ROW or dMLCP_JINVM_ROW) for side s (0: body[0],
+/// 1: body[1]) of its joint: the joint's m rows for body[0], then its m rows for body[1], from
+/// row 2 * joint.row on (<ode/mlcp.h>).
+inline const dReal* side_row(const dReal* base, int width, const dMLCPJoint& joint, int side, int r) {
+    const int index = 2 * joint.row + side * joint.m + (r - joint.row);
+    return base + static_cast<std::ptrdiff_t>(index) * width;
+}
 
 /// Assembles A of an island in the sparse form into out (its storage reused).
 ///

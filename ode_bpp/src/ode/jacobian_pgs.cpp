@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include "ode/assemble.h"
 #include "ode/island_view.h"
 #include "ode_bpp/residuals.h"
 #include "row_bounds.h"
@@ -15,22 +16,19 @@ namespace {
 
 constexpr int kBodyDofs = 6;
 
-/// Row r of joint k's side s (0: body[0], 1: body[1]) in J or J M^-1 (<ode/mlcp.h>).
-const dReal* side_row(const dReal* base, int width, const dMLCPJoint& joint, int side, int r) {
-    const int index = 2 * joint.row + side * joint.m + (r - joint.row);
-    return base + static_cast<std::ptrdiff_t>(index) * width;
-}
-
 /// JinvM_i . v over one body: J M^-1 pads each half of its row to four entries (<ode/mlcp.h>).
 double jinvm_dot(const dReal* jinvm, const double* v) {
     return jinvm[0] * v[0] + jinvm[1] * v[1] + jinvm[2] * v[2] + jinvm[4] * v[3] + jinvm[5] * v[4] + jinvm[6] * v[5];
 }
 
+/// |JinvM_i| . v over one body (v: a body's |J|^T |x|): the row scale's bound.
 double abs_jinvm_dot(const dReal* jinvm, const double* v) {
     return std::abs(jinvm[0]) * v[0] + std::abs(jinvm[1]) * v[1] + std::abs(jinvm[2]) * v[2] +
            std::abs(jinvm[4]) * v[3] + std::abs(jinvm[5]) * v[4] + std::abs(jinvm[6]) * v[5];
 }
 
+/// JinvM_i . J_i over one body, summed from 0 in ODE's order (lx .. az) as the assembly sums a
+/// diagonal entry, so that A_ii is the assembled A's bit for bit.
 double jacobian_dot(const dReal* j, const dReal* jinvm) {
     double sum = 0;
     for (int k = 0; k < kBodyDofs; ++k) sum += jinvm[k < 3 ? k : k + 1] * j[k];

@@ -231,6 +231,10 @@ std::vector<RowState> states_of(const Problem& p, const std::vector<double>& x) 
     return states;
 }
 
+int count_tight(const std::vector<RowState>& states) {
+    return static_cast<int>(std::count_if(states.begin(), states.end(), [](RowState s) { return s != RowState::Free; }));
+}
+
 Residuals residuals_from_vectors(const Problem& p, ConstStrided x, const ResidualBuffers& vectors,
                                  const std::vector<RowState>* states) {
     const std::vector<double>& diagonal = vectors.diagonal;

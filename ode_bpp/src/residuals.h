@@ -38,6 +38,9 @@ Residuals dense_residuals_from(const Problem& problem, ConstStrided x, const std
 /// pinned at lo = hi count as at lo). For methods without one of their own (PGS, Dantzig).
 std::vector<RowState> states_of(const Problem& problem, const std::vector<double>& x);
 
+/// The rows of an index set that are not free (Result::tight).
+int count_tight(const std::vector<RowState>& states);
+
 /// The residuals of x from vectors alone: w = A x - b, the row scales and A's diagonal (n entries
 /// each, the problem's order), for a caller that holds A in neither form (ode/jacobian_pgs.h).
 /// With scale = |A||x| + |b| these are compute_residuals' values; a larger scale lowers only the

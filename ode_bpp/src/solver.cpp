@@ -69,14 +69,8 @@ constexpr double kCertificationFactor = 10;
 /// The level never falls below rounding of the residual itself (Options::tolerance = 0).
 constexpr double kCertificationFloor = 1e-14;
 
-bool is_bpp(Method m) { return m == Method::BppChol || m == Method::BppDown || m == Method::BppSky || m == Method::Bpp; }
-
 bool all_finite(const std::vector<double>& x) {
     return std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
-}
-
-int count_tight(const std::vector<RowState>& states) {
-    return static_cast<int>(std::count_if(states.begin(), states.end(), [](RowState s) { return s != RowState::Free; }));
 }
 
 Result run_dantzig(const Problem& p, const linalg::SymmetricRows& A, std::vector<double>& x) {
@@ -118,16 +112,9 @@ Result dispatch(const Problem& p, const linalg::SymmetricRows& A, const Options&
                 std::vector<double>& x, pivoting::BppWorkspace& bpp, ResidualBuffers& at_answer,
                 linalg::SymmetricRows& scratch) {
     at_answer.w.clear();
-    if (is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, start, x, bpp, at_answer);
+    if (pivoting::is_bpp(o.method)) return pivoting::solve_bpp(p, A, o, start, x, bpp, at_answer);
     if (o.method == Method::Dantzig) return run_dantzig(p, A.in_built_order(scratch), x);
     return run_pgs(p, A.in_built_order(scratch), o, x);
-}
-
-/// True when a BPP method's factor of this island might exceed Options::max_factor_entries: its
-/// dense triangle would. An island within the limit that way is not ordered to find out.
-bool factor_may_be_too_large(const Problem& p, const Options& o) {
-    const auto n = static_cast<std::int64_t>(p.n);
-    return is_bpp(o.method) && o.max_factor_entries > 0 && n * (n + 1) / 2 > o.max_factor_entries;
 }
 
 /// Fallback::Pgs: Options::pgs_iterations sweeps on the sparse A for an island whose factor
@@ -191,7 +178,7 @@ double natural_certificate(const Result& r) { return certified_by(r.residuals.sc
 /// where the method keeps friction consistent (PGS projects onto them at every sweep), the
 /// fixed-bound residuals where it freezes them (ODE's Dantzig; BPP's Frozen mode).
 bool keeps_friction_consistent(const Options& o) {
-    return o.method == Method::Pgs || (is_bpp(o.method) && o.friction == FrictionMode::Consistent);
+    return o.method == Method::Pgs || (pivoting::is_bpp(o.method) && o.friction == FrictionMode::Consistent);
 }
 
 double refuting_residual(const Options& o, const Result& r) {
@@ -240,7 +227,7 @@ double relative_refuting_residual(const Options& o, const Result& r) {
 }
 
 bool wants_polish(const Options& o, const Result& r) {
-    return is_bpp(o.method) && r.status == Status::Converged && r.fallback == Fallback::None &&
+    return pivoting::is_bpp(o.method) && r.status == Status::Converged && r.fallback == Fallback::None &&
            relative_refuting_residual(o, r) > certification_level(o.tolerance) &&
            o.tolerance / kPolishFactor >= kCertificationFloor;
 }
@@ -427,7 +414,7 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
     // the factor's size in the order the solve would factor in; an ordering chosen to find it
     // out is handed on, so that the solve does not order A again
     Start ordered;
-    const bool sized = factor_may_be_too_large(problem, options);
+    const bool sized = pivoting::factor_may_be_too_large(problem.n, options);
     const std::int64_t entries =
         sized ? pivoting::planned_factor_entries(problem, *A, options, start, parts.rows, ordered.ordering) : 0;
     if (!ordered.ordering.empty()) ordered.states = start.states;
@@ -443,7 +430,7 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
     fill_residuals(problem, *A, r, answer, parts.residuals, vectors_at_answer);
     agree_with_residual(options, r);
     if (wants_polish(options, r) && polish(problem, *A, options, parts, r, answer)) agree_with_residual(options, r);
-    if (!is_bpp(options.method)) r.factor_error = std::numeric_limits<double>::quiet_NaN();
+    if (!pivoting::is_bpp(options.method)) r.factor_error = std::numeric_limits<double>::quiet_NaN();
     if (r.status != Status::Converged && r.message.empty()) r.message = to_string(r.status);
     for (int i = 0; i < problem.n; ++i) x[i] = answer[i];
     return r;

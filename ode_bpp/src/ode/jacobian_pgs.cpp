@@ -8,6 +8,7 @@
 #include "ode/assemble.h"
 #include "ode/island_view.h"
 #include "ode_bpp/residuals.h"
+#include "ode_bpp/validation.h"
 #include "row_bounds.h"
 
 namespace ode_bpp::ode {
@@ -120,16 +121,20 @@ std::string structure_defect(const dMLCP& island) {
 /// cfm is not finite or whose A_ii is not positive.
 std::string diagonal_of(const dMLCP& island, std::vector<double>& diagonal) {
     diagonal.assign(static_cast<std::size_t>(island.m), 0.0);
-    std::string defect;
+    int bad = -1;        // the first defective row: its message is built only then
+    bool finite = true;  // whether that row's J, J M^-1 and cfm are finite
     for_each_row(island, [&](int i, const RowSides& s) {
-        if (!defect.empty()) return;
-        std::ostringstream m;
-        if (!row_is_finite(s, island.cfm[i])) m << "row " << i << ": J, J M^-1 or cfm is not finite";
-        else if (diagonal[i] = diagonal_entry(s, island.cfm[i]); !(diagonal[i] > 0))
-            m << "row " << i << ": A(" << i << "," << i << ") = " << diagonal[i] << " is not > 0";
-        defect = m.str();
+        if (bad >= 0) return;
+        finite = row_is_finite(s, island.cfm[i]);
+        if (finite) diagonal[i] = diagonal_entry(s, island.cfm[i]);
+        if (!finite || !(diagonal[i] > 0)) bad = i;
     });
-    return defect;
+    if (bad < 0) return {};
+    std::ostringstream m;
+    m << "row " << bad << ": ";
+    if (!finite) m << "J, J M^-1 or cfm is not finite";
+    else m << "A(" << bad << "," << bad << ") = " << diagonal[bad] << " is not > 0";
+    return m.str();
 }
 
 void sweep(const dMLCP& island, const Problem& p, const std::vector<double>& diagonal, JacobianPgsBuffers& ws) {
@@ -167,9 +172,10 @@ void residual_vectors_at_answer(const dMLCP& island, const Problem& p, JacobianP
     });
 }
 
-Result failed(Status status, const std::string& message, int m, Strided x) {
+Result failed(const Options& o, Status status, const std::string& message, int m, Strided x) {
     Result r;
-    r.method = Method::Pgs;
+    r.method = o.method;
+    r.friction = o.friction;
     r.status = status;
     r.message = message;
     for (int i = 0; i < m; ++i) x[i] = 0;
@@ -203,25 +209,27 @@ std::int64_t coupled_entries_lower_bound(const dMLCP& island, std::vector<std::i
 Result solve_by_jacobian_pgs(const dMLCP& island, const Problem& problem, const Options& options, std::int64_t entries,
                              Strided x, JacobianPgsBuffers& ws) {
     const int m = island.m;
+    if (const ValidationResult v = validate_rows(problem); !v.valid) return failed(options, Status::InvalidInput, v.message, m, x);
     if (const std::string defect = structure_defect(island); !defect.empty())
-        return failed(Status::InvalidInput, defect, m, x);
+        return failed(options, Status::InvalidInput, defect, m, x);
     if (const std::string defect = diagonal_of(island, ws.vectors.diagonal); !defect.empty())
-        return failed(Status::InvalidInput, defect, m, x);
+        return failed(options, Status::InvalidInput, defect, m, x);
     ws.x.assign(static_cast<std::size_t>(m), 0.0);
     ws.impulse.assign(static_cast<std::size_t>(island.nb) * kBodyDofs, 0.0);
     const int sweeps = std::max(0, options.pgs_iterations);
     for (int k = 0; k < sweeps; ++k) sweep(island, problem, ws.vectors.diagonal, ws);
     if (!std::all_of(ws.x.begin(), ws.x.end(), [](double v) { return std::isfinite(v); }))
-        return failed(Status::NotSpd, "projected Gauss-Seidel on J ended with an answer that is not finite", m, x);
+        return failed(options, Status::NotSpd, "projected Gauss-Seidel on J ended with an answer that is not finite", m, x);
     residual_vectors_at_answer(island, problem, ws);
     Result r;
-    r.method = Method::Pgs;
+    r.method = options.method;
+    r.friction = options.friction;
     r.status = Status::FallbackUsed;
     r.fallback = Fallback::Pgs;
     r.message = why(options, entries);
     r.pivoting.pivots = sweeps;  // sweeps: PGS has no pivot steps
     r.states = states_of(problem, ws.x);
-    r.tight = static_cast<int>(std::count_if(r.states.begin(), r.states.end(), [](RowState s) { return s != RowState::Free; }));
+    r.tight = count_tight(r.states);
     r.residuals = residuals_from_vectors(problem, ConstStrided{ws.x.data(), 1}, ws.vectors, &r.states);
     for (int i = 0; i < m; ++i) x[i] = ws.x[i];
     return r;

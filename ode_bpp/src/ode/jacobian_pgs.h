@@ -34,13 +34,16 @@ struct JacobianPgsBuffers {
 ///     w_i = sum over the bodies of row i of JinvM_i . (J^T x)(body) + cfm_i x_i - b_i
 /// (baselines::solve_pgs's iterates on the assembled A, up to rounding) and a friction row's
 /// bounds from the current value of its normal (quickstep's rule). Status FallbackUsed,
-/// fallback Pgs, the message says why (`entries`: coupled_entries_lower_bound, over
-/// Options::max_factor_entries); the residuals are compute_residuals' except that the row scale is
-/// the bound |JinvM_i| . (|J|^T |x|)(body) + cfm_i |x_i| + |b_i| >= (|A||x| + |b|)_i.
-/// Joints that do not tile the rows, a body outside [-1, nb), input that is not finite (J, J M^-1,
-/// cfm) or a diagonal A_ii that is not positive: status InvalidInput, x = 0; an answer that is not finite: status NotSpd, x = 0.
-/// x is written only with the final answer. problem: the island's b, lo, hi, findex and nub, without A (validate_rows).
-/// x: out, m entries (ODE's pairsbx). O(sweeps * m) time, O(m + bodies) memory.
+/// fallback Pgs, method and friction mode the options', the message says why (`entries`:
+/// coupled_entries_lower_bound, over Options::max_factor_entries); the residuals are
+/// compute_residuals' except that the row scale is the bound
+/// |JinvM_i| . (|J|^T |x|)(body) + cfm_i |x_i| + |b_i| >= (|A||x| + |b|)_i.
+/// A problem that fails validate_rows, joints that do not tile the rows, a body outside [-1, nb),
+/// input that is not finite (J, J M^-1, cfm) or a diagonal A_ii that is not positive: status
+/// InvalidInput, x = 0; an answer that is not finite: status NotSpd, x = 0. x is written only
+/// with the final answer. problem: the island's b, lo, hi, findex and nub, without A
+/// (IslandView::rows_of). x: out, m entries (ODE's pairsbx). O(sweeps * m) time, O(m + bodies)
+/// memory.
 Result solve_by_jacobian_pgs(const dMLCP& island, const Problem& problem, const Options& options, std::int64_t entries,
                              Strided x, JacobianPgsBuffers& buffers);
 

@@ -32,9 +32,9 @@
 #include "linalg/symmetric_rows.h"
 #include "ode/island_view.h"
 #include "ode/jacobian_pgs.h"
-#include "ode_bpp/validation.h"
 #include "ode/ordering_cache.h"
 #include "ode/row_identity.h"
+#include "pivoting/bpp_driver.h"
 #include "pivoting/small_island.h"
 
 namespace ode_bpp {
@@ -184,37 +184,13 @@ void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
     ws.last = std::move(r);  // no copy of its vectors per island
 }
 
-bool factors(Method m) { return m == Method::Bpp || m == Method::BppSky || m == Method::BppDown || m == Method::BppChol; }
-
-/// A's entries at least (ode::coupled_entries_lower_bound) where they exceed a factoring
-/// method's Options::max_factor_entries, so that its factor would too; 0 otherwise. Only an
-/// island whose dense triangle m (m + 1) / 2 exceeds the limit is counted (solver.cpp's rule).
+/// A's entries at least (ode::coupled_entries_lower_bound) where they exceed a BPP method's
+/// Options::max_factor_entries, so that its factor would too; 0 otherwise. Counted only where
+/// the dense triangle passes the limit (pivoting::factor_may_be_too_large, as solve() asks).
 std::int64_t entries_past_the_limit(const dMLCP& island, const Options& o, IslandScratch& scratch) {
-    if (!ode::has_sparse_form(island) || o.max_factor_entries <= 0 || !factors(o.method)) return 0;
-    const auto m = static_cast<std::int64_t>(island.m);
-    if (m * (m + 1) / 2 <= o.max_factor_entries) return 0;
+    if (!ode::has_sparse_form(island) || !pivoting::factor_may_be_too_large(island.m, o)) return 0;
     const std::int64_t entries = ode::coupled_entries_lower_bound(island, scratch.rows_on_body);
     return entries > o.max_factor_entries ? entries : 0;
-}
-
-/// An island whose A alone would pass the factor limit, answered without forming A
-/// (ode/jacobian_pgs.h; docs/modelling.md, "Islands too large for an exact step").
-Result answer_without_matrix(const dMLCP& island, const Options& o, std::int64_t entries, IslandScratch& scratch) {
-    const Problem q = scratch.view.rows_of(island);
-    const ValidationResult v = validate_rows(q);
-    const Strided x{island.pairsbx + 1, 2};
-    if (!v.valid) {
-        Result r;
-        r.method = o.method;
-        r.status = Status::InvalidInput;
-        r.message = v.message;
-        for (int i = 0; i < island.m; ++i) x[i] = 0;
-        return r;
-    }
-    Result r = ode::solve_by_jacobian_pgs(island, q, o, entries, x, scratch.jacobian_pgs);
-    r.method = o.method;
-    r.friction = o.friction;
-    return r;
 }
 
 dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
@@ -229,7 +205,9 @@ dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* u
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
     Result r;
     if (const std::int64_t entries = entries_past_the_limit(*problem, plan.options, scratch); entries > 0) {
-        r = answer_without_matrix(*problem, plan.options, entries, scratch);
+        // A would pass the factor limit: answered without forming it (ode/jacobian_pgs.h)
+        r = ode::solve_by_jacobian_pgs(*problem, scratch.view.rows_of(*problem), plan.options, entries,
+                                       Strided{problem->pairsbx + 1, 2}, scratch.jacobian_pgs);
     } else {
         const Problem q = scratch.view.of(*problem, plan.small, scratch.start.ordering);
         r = solve(q, plan.options, Strided{problem->pairsbx + 1, 2}, scratch.start, scratch.workspace);

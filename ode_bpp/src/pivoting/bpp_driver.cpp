@@ -216,6 +216,13 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     return r;
 }
 
+bool is_bpp(Method m) { return m == Method::BppChol || m == Method::BppDown || m == Method::BppSky || m == Method::Bpp; }
+
+bool factor_may_be_too_large(int n, const Options& o) {
+    const auto rows = static_cast<std::int64_t>(n);
+    return is_bpp(o.method) && o.max_factor_entries > 0 && rows * (rows + 1) / 2 > o.max_factor_entries;
+}
+
 std::int64_t planned_factor_entries(const Problem& problem, const linalg::SymmetricRows& A, const Options& options,
                                     const Start& start, linalg::SymmetricRows& scratch, std::vector<int>& chosen) {
     chosen.clear();

@@ -21,6 +21,14 @@ struct BppBuffers;
 using BppWorkspace = KeptBuffers<BppBuffers>;
 extern template class KeptBuffers<BppBuffers>;  // instantiated where BppBuffers is defined
 
+/// The block principal pivoting methods: BppChol, BppDown, BppSky and Bpp.
+bool is_bpp(Method method);
+
+/// True when a BPP method's factor of an n-row island might exceed Options::max_factor_entries:
+/// its dense triangle n (n + 1) / 2 would. An island within the limit that way is not ordered or
+/// counted to find out (solve() and the world hook both ask this first).
+bool factor_may_be_too_large(int n, const Options& options);
+
 /// Solves a validated problem with options.method in {BppChol, BppDown, BppSky, Bpp}.
 /// A: linalg::SymmetricRows(problem, {}) or problem.sparse, the problem's matrix, stored in any
 /// order (SymmetricRows::order; stored in the order the solver factors in, it is not copied).

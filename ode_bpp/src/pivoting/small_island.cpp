@@ -305,7 +305,7 @@ bool solve_small_island(const Problem& problem, const Options& options, const St
     // an answer that overflowed (finite but huge entries of A) is the general chain's to handle
     if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); })) return false;
     r.status = Status::Converged;
-    r.tight = static_cast<int>(std::count_if(states.begin(), states.end(), [](RowState s) { return s != RowState::Free; }));
+    r.tight = count_tight(states);
     // the loop's w and scale are those of x: every step refreshes them, a polish round that
     // fails restores them with x
     r.residuals = dense_residuals_from(problem, ConstStrided{x.data(), 1}, ws.w, ws.scale, &states);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -147,6 +148,66 @@ TEST(MatrixFreePgs, AnIslandWhoseAWouldPassTheLimitIsAnsweredFromJAsPgsOnAWould)
         EXPECT_EQ(hook.tight, assembled.tight);
     }
     EXPECT_TRUE(heap.finite());
+}
+
+/// The count a message of the matrix-free path quotes: "... would hold [at least] N entries ...".
+std::int64_t quoted_entries(const std::string& message) {
+    const std::size_t at = message.find("hold ");
+    if (at == std::string::npos) return -1;
+    std::size_t digits = message.find_first_of("0123456789", at);
+    return digits == std::string::npos ? -1 : std::stoll(message.substr(digits));
+}
+
+/// The heap's first step under a factor limit: the world's last result (the heap is one island
+/// besides spheres alone, which have no rows), and its largest island as ODE saw it answered.
+struct FirstStep {
+    ode_bpp::Result result;
+    int rows = 0;
+    std::string fallback;
+    int status = -1;
+};
+
+FirstStep first_step_with_limit(std::int64_t limit) {
+    Heap heap(40);
+    EXPECT_EQ(ode_bpp_use(heap.world, "bpp"), 1);
+    ode_bpp::set_world_settings(heap.world, with_factor_limit(limit));
+    Largest largest;
+    dWorldSetMLCPObserver(heap.world, &observe, &largest);
+    heap.step();
+    EXPECT_TRUE(heap.finite());
+    return {ode_bpp::last_island_result(heap.world), largest.problem ? largest.problem->n : 0, largest.fallback,
+            largest.status};
+}
+
+TEST(MatrixFreePgs, AnIslandWhoseFactorWouldPassTheLimitIsAnsweredFromJWithTheSolvesOwnCount) {
+    OdeLifetime ode;
+    // A's entries, bounded from below: the matrix-free path's message at a limit of 1
+    const FirstStep tiny = first_step_with_limit(1);
+    const std::int64_t a_entries = quoted_entries(tiny.result.message);
+    ASSERT_GT(a_entries, 0) << tiny.result.message;
+    ASSERT_GT(tiny.rows, 100) << "not the heap this test is about";
+
+    // A within the limit, its factor past it: counted from the joints, A never formed
+    const FirstStep past = first_step_with_limit(a_entries);
+    EXPECT_EQ(past.fallback, "pgs");
+    EXPECT_EQ(past.result.fallback, ode_bpp::Fallback::Pgs);
+    EXPECT_NE(past.result.message.find("the Cholesky factor would hold"), std::string::npos) << past.result.message;
+    EXPECT_NE(past.result.message.find("without forming A"), std::string::npos) << past.result.message;
+    const std::int64_t factor = quoted_entries(past.result.message);
+    ASSERT_GT(factor, a_entries);
+    const auto n = static_cast<std::int64_t>(tiny.rows);
+    ASSERT_LT(factor, n * (n + 1) / 2) << "the limit must not be decided by the dense triangle alone";
+
+    // the count is the solve's: exact at it, and the solve's own check passes with it
+    const FirstStep at = first_step_with_limit(factor);
+    EXPECT_EQ(at.fallback, "");
+    EXPECT_EQ(at.status, dMLCPSolved);
+    EXPECT_EQ(at.result.fallback, ode_bpp::Fallback::None) << at.result.message;
+    EXPECT_EQ(at.result.status, ode_bpp::Status::Converged) << at.result.message;
+    const FirstStep below = first_step_with_limit(factor - 1);
+    EXPECT_EQ(below.fallback, "pgs");
+    EXPECT_EQ(below.result.fallback, ode_bpp::Fallback::Pgs);
+    EXPECT_EQ(quoted_entries(below.result.message), factor);
 }
 
 TEST(MatrixFreePgs, WithinTheLimitTheHeapIsSolvedExactly) {

@@ -72,4 +72,19 @@ int first_untiled_joint(const dMLCP& p) {
     return -1;
 }
 
+std::string structure_defect(const dMLCP& island) {
+    if (island.joints == nullptr || island.nj <= 0) return "the island has no joints";
+    if (const int k = first_untiled_joint(island); k >= 0)
+        return "joint " + std::to_string(k) + "'s rows do not follow the previous joint's";
+    const dMLCPJoint& last = island.joints[island.nj - 1];
+    if (last.row + last.m != island.m)
+        return "the joints' rows end at " + std::to_string(last.row + last.m) + ", not at m = " + std::to_string(island.m);
+    for (int k = 0; k < island.nj; ++k)
+        for (int body : island.joints[k].body)
+            if (body < -1 || body >= island.nb)
+                return "joint " + std::to_string(k) + ": body " + std::to_string(body) + " outside [-1, " +
+                       std::to_string(island.nb) + ")";
+    return {};
+}
+
 }  // namespace ode_bpp::ode

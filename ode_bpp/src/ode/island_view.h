@@ -9,6 +9,7 @@
 
 #include <ode/mlcp.h>
 
+#include <string>
 #include <vector>
 
 #include "linalg/symmetric_rows.h"
@@ -42,5 +43,10 @@ private:
 /// The first joint whose rows do not continue where the previous joint's ended (joints must tile
 /// rows 0 .. m-1 in order, each with m > 0), or -1 when they tile.
 int first_untiled_joint(const dMLCP& island);
+
+/// An empty message, or what keeps a method that reads the sparse form itself from reading the
+/// island safely: no joints, joints that do not tile rows 0 .. m-1 in order (each row's J is
+/// found through its joint), or a body outside [-1, nb) (per-body arrays are indexed by it).
+std::string structure_defect(const dMLCP& island);
 
 }  // namespace ode_bpp::ode

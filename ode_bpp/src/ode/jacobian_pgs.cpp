@@ -99,24 +99,6 @@ void for_each_row(const dMLCP& island, Visit&& visit) {
     }
 }
 
-/// An empty message, or what keeps the sweeps from reading the island safely: joints that do not
-/// tile rows 0 .. m-1 in order (each row's J is found through its joint), or a body outside
-/// [-1, nb) (the bodies' sums are indexed by it).
-std::string structure_defect(const dMLCP& island) {
-    if (island.joints == nullptr || island.nj <= 0) return "the island has no joints";
-    if (const int k = first_untiled_joint(island); k >= 0)
-        return "joint " + std::to_string(k) + "'s rows do not follow the previous joint's";
-    const dMLCPJoint& last = island.joints[island.nj - 1];
-    if (last.row + last.m != island.m)
-        return "the joints' rows end at " + std::to_string(last.row + last.m) + ", not at m = " + std::to_string(island.m);
-    for (int k = 0; k < island.nj; ++k)
-        for (int body : island.joints[k].body)
-            if (body < -1 || body >= island.nb)
-                return "joint " + std::to_string(k) + ": body " + std::to_string(body) + " outside [-1, " +
-                       std::to_string(island.nb) + ")";
-    return {};
-}
-
 /// A's diagonal into diagonal (m entries); an empty message, or the first row whose J, J M^-1 or
 /// cfm is not finite or whose A_ii is not positive.
 std::string diagonal_of(const dMLCP& island, std::vector<double>& diagonal) {
@@ -182,10 +164,11 @@ Result failed(const Options& o, Status status, const std::string& message, int m
     return r;
 }
 
-std::string why(const Options& o, std::int64_t entries) {
+std::string why(const Options& o, const Oversize& oversize) {
     std::ostringstream m;
-    m << "A would hold at least " << entries << " entries, more than max_factor_entries = " << o.max_factor_entries
-      << "; answered by " << std::max(0, o.pgs_iterations)
+    if (oversize.measure == Oversize::Measure::FactorEntries) m << "the Cholesky factor would hold ";
+    else m << "A would hold at least ";
+    m << oversize.entries << " entries, more than max_factor_entries = " << o.max_factor_entries << "; answered by " << std::max(0, o.pgs_iterations)
       << " sweeps of projected Gauss-Seidel on J and J M^-1, without forming A";
     return m.str();
 }
@@ -206,8 +189,8 @@ std::int64_t coupled_entries_lower_bound(const dMLCP& island, std::vector<std::i
     return std::max(largest, sum / 2);
 }
 
-Result solve_by_jacobian_pgs(const dMLCP& island, const Problem& problem, const Options& options, std::int64_t entries,
-                             Strided x, JacobianPgsBuffers& ws) {
+Result solve_by_jacobian_pgs(const dMLCP& island, const Problem& problem, const Options& options,
+                             const Oversize& oversize, Strided x, JacobianPgsBuffers& ws) {
     const int m = island.m;
     if (const ValidationResult v = validate_rows(problem); !v.valid) return failed(options, Status::InvalidInput, v.message, m, x);
     if (const std::string defect = structure_defect(island); !defect.empty())
@@ -226,7 +209,7 @@ Result solve_by_jacobian_pgs(const dMLCP& island, const Problem& problem, const 
     r.friction = options.friction;
     r.status = Status::FallbackUsed;
     r.fallback = Fallback::Pgs;
-    r.message = why(options, entries);
+    r.message = why(options, oversize);
     r.pivoting.pivots = sweeps;  // sweeps: PGS has no pivot steps
     r.states = states_of(problem, ws.x);
     r.tight = count_tight(r.states);

@@ -10,6 +10,7 @@
 
 #include <ode/mlcp.h>
 
+#include "ode/oversize.h"
 #include "ode_bpp/solver.h"
 #include "residuals.h"
 
@@ -34,8 +35,8 @@ struct JacobianPgsBuffers {
 ///     w_i = sum over the bodies of row i of JinvM_i . (J^T x)(body) + cfm_i x_i - b_i
 /// (baselines::solve_pgs's iterates on the assembled A, up to rounding) and a friction row's
 /// bounds from the current value of its normal (quickstep's rule). Status FallbackUsed,
-/// fallback Pgs, method and friction mode the options', the message says why (`entries`:
-/// coupled_entries_lower_bound, over Options::max_factor_entries); the residuals are
+/// fallback Pgs, method and friction mode the options', the message says why (`oversize`: the
+/// count over Options::max_factor_entries, ode/oversize.h); the residuals are
 /// compute_residuals' except that the row scale is the bound
 /// |JinvM_i| . (|J|^T |x|)(body) + cfm_i |x_i| + |b_i| >= (|A||x| + |b|)_i.
 /// A problem that fails validate_rows, joints that do not tile the rows, a body outside [-1, nb),
@@ -44,7 +45,7 @@ struct JacobianPgsBuffers {
 /// with the final answer. problem: the island's b, lo, hi, findex and nub, without A
 /// (IslandView::rows_of). x: out, m entries (ODE's pairsbx). O(sweeps * m) time, O(m + bodies)
 /// memory.
-Result solve_by_jacobian_pgs(const dMLCP& island, const Problem& problem, const Options& options, std::int64_t entries,
-                             Strided x, JacobianPgsBuffers& buffers);
+Result solve_by_jacobian_pgs(const dMLCP& island, const Problem& problem, const Options& options,
+                             const Oversize& oversize, Strided x, JacobianPgsBuffers& buffers);
 
 }  // namespace ode_bpp::ode

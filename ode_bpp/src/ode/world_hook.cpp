@@ -6,8 +6,9 @@
 // J, J M^-1 and the CFM and never forms its dense A; A is assembled into compressed rows in
 // O(entries) (ode/assemble.h). A dense A (an ODE without the sparse form) is read in place.
 //
-// An island whose A alone would pass Options::max_factor_entries is not assembled: projected
-// Gauss-Seidel sweeps J and J M^-1 instead (ode/jacobian_pgs.h), fallback "pgs".
+// An island whose A or whose factor would pass Options::max_factor_entries, as its joints tell
+// (ode/oversize.h), is not assembled: projected Gauss-Seidel sweeps J and J M^-1 instead
+// (ode/jacobian_pgs.h), fallback "pgs".
 //
 // Fallback chain of one island (reported in dMLCPIslandStats::fallback):
 //   1. the solver's own chain (regularize and retry, then ODE's Dantzig: Status::FallbackUsed);
@@ -33,6 +34,7 @@
 #include "ode/island_view.h"
 #include "ode/jacobian_pgs.h"
 #include "ode/ordering_cache.h"
+#include "ode/oversize.h"
 #include "ode/row_identity.h"
 #include "pivoting/bpp_driver.h"
 #include "pivoting/small_island.h"
@@ -130,7 +132,7 @@ struct IslandScratch {
     ode::IslandView view;
     Start start;
     Workspace workspace;
-    std::vector<std::int64_t> rows_on_body;  ///< ode::coupled_entries_lower_bound's scratch
+    std::vector<std::int64_t> rows_on_body;  ///< ode::oversize's scratch
     ode::JacobianPgsBuffers jacobian_pgs;
 };
 
@@ -147,6 +149,7 @@ struct IslandPlan {
     bool small = false;     ///< pivoting::is_small_island: no ordering is looked up or kept
     bool recalled = false;  ///< the warm-start memory was asked (scratch.slots says where)
     bool warm = false;      ///< and it knew the island: scratch.start.states holds its index set
+    bool ordering_remembered = false;  ///< scratch.start.ordering came from the ordering cache
 };
 
 /// The world's options for `method`, the island's warm start (by row identity, when some row can
@@ -166,7 +169,10 @@ IslandPlan plan_island(const dMLCP& problem, Method method, bool known_rows, boo
     }
     if (known_rows && !plan.small) {
         OrderingCache::signature(problem, scratch.keys.front(), scratch.structure);
-        if (const std::vector<int>* known = ws.orderings.find(scratch.structure, problem.step)) start.ordering = *known;
+        if (const std::vector<int>* known = ws.orderings.find(scratch.structure, problem.step)) {
+            start.ordering = *known;
+            plan.ordering_remembered = true;
+        }
     }
     if (!plan.warm) start.states.clear();
     return plan;
@@ -179,18 +185,19 @@ void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
     WorldState& ws = hook().worlds[problem.world];  // looked up again: forget_world may have run meanwhile
     if (use_memory && usable)
         ws.memory.remember(scratch.keys, problem.step, r.states, plan.recalled ? &scratch.slots : nullptr);
-    if (known_rows && !plan.small && !r.ordering.empty() && r.ordering != scratch.start.ordering)
+    if (known_rows && !plan.small && !r.ordering.empty() &&
+        (!plan.ordering_remembered || r.ordering != scratch.start.ordering))
         ws.orderings.store(scratch.structure, r.ordering, problem.step);
     ws.last = std::move(r);  // no copy of its vectors per island
 }
 
-/// A's entries at least (ode::coupled_entries_lower_bound) where they exceed a BPP method's
-/// Options::max_factor_entries, so that its factor would too; 0 otherwise. Counted only where
-/// the dense triangle passes the limit (pivoting::factor_may_be_too_large, as solve() asks).
-std::int64_t entries_past_the_limit(const dMLCP& island, const Options& o, IslandScratch& scratch) {
-    if (!ode::has_sparse_form(island) || !pivoting::factor_may_be_too_large(island.m, o)) return 0;
-    const std::int64_t entries = ode::coupled_entries_lower_bound(island, scratch.rows_on_body);
-    return entries > o.max_factor_entries ? entries : 0;
+/// ode::oversize for an island the hook would assemble: its A or its factor past the limit, or
+/// None. The factor is counted in scratch.start.ordering, the remembered order, or else in the one
+/// it sets there for the solve.
+ode::Oversize island_past_the_limit(const dMLCP& island, const IslandPlan& plan, IslandScratch& scratch) {
+    if (plan.small || !pivoting::factor_may_be_too_large(island.m, plan.options)) return {};
+    return ode::oversize(island, scratch.view.rows_of(island), plan.options, scratch.start.ordering,
+                         scratch.rows_on_body);
 }
 
 dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
@@ -204,9 +211,9 @@ dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* u
     const IslandPlan plan = plan_island(*problem, method, known_rows, use_memory, scratch);
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
     Result r;
-    if (const std::int64_t entries = entries_past_the_limit(*problem, plan.options, scratch); entries > 0) {
-        // A would pass the factor limit: answered without forming it (ode/jacobian_pgs.h)
-        r = ode::solve_by_jacobian_pgs(*problem, scratch.view.rows_of(*problem), plan.options, entries,
+    const ode::Oversize oversize = island_past_the_limit(*problem, plan, scratch);
+    if (oversize) {  // answered without forming A (ode/jacobian_pgs.h)
+        r = ode::solve_by_jacobian_pgs(*problem, scratch.view.rows_of(*problem), plan.options, oversize,
                                        Strided{problem->pairsbx + 1, 2}, scratch.jacobian_pgs);
     } else {
         const Problem q = scratch.view.of(*problem, plan.small, scratch.start.ordering);

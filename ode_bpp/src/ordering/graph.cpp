@@ -105,4 +105,32 @@ Graph block_graph(int num_blocks, const int* block_row, const int* block_body) {
     return g;
 }
 
+std::vector<int> block_row_profile(int num_blocks, const int* block_row, const int* block_body,
+                                   const std::vector<int>& perm) {
+    const int n = static_cast<int>(perm.size());
+    std::vector<int> position(perm.size());
+    for (int k = 0; k < n; ++k) position[perm[k]] = k;
+    int bodies = 0;
+    for (int k = 0; k < 2 * num_blocks; ++k) bodies = std::max(bodies, block_body[k] + 1);
+    // block_first: each block's earliest row; body_first: the earliest row of the blocks on a body
+    std::vector<int> block_first(static_cast<std::size_t>(num_blocks), n);
+    std::vector<int> body_first(static_cast<std::size_t>(bodies), n);
+    for (int block = 0; block < num_blocks; ++block) {
+        for (int row = block_row[block]; row < block_row[block + 1]; ++row)
+            block_first[block] = std::min(block_first[block], position[row]);
+        for (int side = 0; side < 2; ++side)
+            if (const int body = block_body[2 * block + side]; body >= 0)
+                body_first[body] = std::min(body_first[body], block_first[block]);
+    }
+    // a row couples with every row of its own block and of the blocks on either of its bodies
+    std::vector<int> first(perm.size());
+    for (int block = 0; block < num_blocks; ++block) {
+        int earliest = block_first[block];
+        for (int side = 0; side < 2; ++side)
+            if (const int body = block_body[2 * block + side]; body >= 0) earliest = std::min(earliest, body_first[body]);
+        for (int row = block_row[block]; row < block_row[block + 1]; ++row) first[position[row]] = earliest;
+    }
+    return first;
+}
+
 }  // namespace ode_bpp::ordering

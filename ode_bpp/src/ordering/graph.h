@@ -38,4 +38,13 @@ Graph graph_from_rows(const linalg::SymmetricRows& A);
 /// or null; when given, a block owning no rows gets no edges (it has no entries in A).
 Graph block_graph(int num_blocks, const int* block_row, const int* block_body);
 
+/// The row profile, in the order perm (perm[new] = old, n entries), of a symmetric matrix with
+/// the blocks' structural pattern: block (a, b) whole where a == b or a and b share a body >= 0
+/// (block_graph's edges), every other entry zero. Returns first (new index space, n entries):
+/// first[i] <= i, the first column of row i's lower envelope (linalg::SkylineShape's row
+/// profile). Blocks as block_graph's with block_row given, tiling rows 0 .. n-1 in order.
+/// O(n + blocks + bodies), without the graph's edges.
+std::vector<int> block_row_profile(int num_blocks, const int* block_row, const int* block_body,
+                                   const std::vector<int>& perm);
+
 }  // namespace ode_bpp::ordering

@@ -146,6 +146,13 @@ double flagged_rows_factor_bound(const linalg::SymmetricRows& A, const std::vect
     return bound;
 }
 
+std::vector<int> block_ordering(Method method, const Problem& problem) {
+    if (method != Method::Bpp && method != Method::BppSky) return identity(problem.n);
+    ordering::OrderPair pair =
+        ordering::cuthill_mckee_pair(problem.n, nullptr, problem.num_blocks, problem.block_row, problem.block_body);
+    return std::move(method == Method::BppSky ? pair.forward : pair.reverse);
+}
+
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
                                  const std::vector<RowState>& warm_start, FirstSolve first) {
     if (method == Method::BppSky) return order_pair(problem, A).forward;

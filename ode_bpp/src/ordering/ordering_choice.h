@@ -32,6 +32,13 @@ enum class FirstSolve {
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
                                  const std::vector<RowState>& warm_start, FirstSolve first = FirstSolve::AsWarmStart);
 
+/// choose_ordering's first candidate from the problem's row blocks alone, without A: for BppSky
+/// Cuthill-McKee on the block graph (its whole choice), for Bpp the reverse (the order the
+/// tight-last candidates compete with, and the choice for islands without rows expected tight);
+/// the identity for the other methods, and where the blocks do not tile the rows. O(n + the block
+/// graph's edges).
+std::vector<int> block_ordering(Method method, const Problem& problem);
+
 /// Warm-started solves take a few steps (two fixed-bound solves in Frozen mode).
 constexpr double kStepsPerWarmSolve = 3;
 

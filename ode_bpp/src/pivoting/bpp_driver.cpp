@@ -42,11 +42,6 @@ struct PermutedProblem {
     std::unique_ptr<FreeSolver> solver;
 };
 
-/// The factor strategy: the method's own, except Bpp on small islands (dense_island_rows).
-Method strategy_of(const Problem& p, const Options& o) {
-    return o.method == Method::Bpp && p.n <= o.tuning.dense_island_rows ? Method::BppChol : o.method;
-}
-
 /// ordering::choose_ordering for this solve, hinted by the warm start where
 /// Tuning::order_tight_last asks. A: in the problem's order.
 std::vector<int> chosen_ordering(const Problem& p, const linalg::SymmetricRows& A, const Options& o, const Start& start,
@@ -64,8 +59,6 @@ bool stored_in(const linalg::SymmetricRows& A, const std::vector<int>& perm, int
     if (!A.order().empty()) return A.order() == perm;
     return static_cast<int>(perm.size()) == n && is_identity(perm);
 }
-
-bool strategy_orders(Method strategy) { return strategy == Method::Bpp || strategy == Method::BppSky; }
 
 /// The symmetric permutation to factor in: the given one where the strategy orders and it is
 /// valid (the hook passes the previous step's), else ordering/ordering_choice.h's. A stored in
@@ -215,6 +208,12 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
     if (options.compute_factor_error && outcome != PolicyOutcome::NotSpd) r.factor_error = q.solver->factor_error(tight_set(states));
     return r;
 }
+
+Method strategy_of(const Problem& p, const Options& o) {
+    return o.method == Method::Bpp && p.n <= o.tuning.dense_island_rows ? Method::BppChol : o.method;
+}
+
+bool strategy_orders(Method strategy) { return strategy == Method::Bpp || strategy == Method::BppSky; }
 
 bool is_bpp(Method m) { return m == Method::BppChol || m == Method::BppDown || m == Method::BppSky || m == Method::Bpp; }
 

@@ -24,6 +24,14 @@ extern template class KeptBuffers<BppBuffers>;  // instantiated where BppBuffers
 /// The block principal pivoting methods: BppChol, BppDown, BppSky and Bpp.
 bool is_bpp(Method method);
 
+/// The factor strategy solve_bpp takes: the method's own, except Bpp on small islands
+/// (Tuning::dense_island_rows), which factors densely as BppChol.
+Method strategy_of(const Problem& problem, const Options& options);
+
+/// True for the strategies that factor in a chosen permutation (Bpp, BppSky; the others in the
+/// problem's order, densely).
+bool strategy_orders(Method strategy);
+
 /// True when a BPP method's factor of an n-row island might exceed Options::max_factor_entries:
 /// its dense triangle n (n + 1) / 2 would. An island within the limit that way is not ordered or
 /// counted to find out (solve() and the world hook both ask this first).

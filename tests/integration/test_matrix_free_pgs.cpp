@@ -17,13 +17,11 @@
 #include "ode_bpp/capture.h"
 #include "ode_bpp/ode.h"
 #include "ode_bpp/residuals.h"
+#include "ode_lifetime.h"
 
 namespace {
 
-struct OdeLifetime {
-    OdeLifetime() { dInitODE2(0); }
-    ~OdeLifetime() { dCloseODE(); }
-};
+using ode_bpp::test::OdeLifetime;
 
 /// Spheres dropped into one heap at once, overlapping: one island of a few hundred contact rows
 /// (mu = infinity on half the contacts, 0.5 on the rest).

@@ -10,13 +10,11 @@
 #include <vector>
 
 #include "ode_bpp/ode.h"
+#include "ode_lifetime.h"
 
 namespace {
 
-struct OdeLifetime {
-    OdeLifetime() { dInitODE2(0); }
-    ~OdeLifetime() { dCloseODE(); }
-};
+using ode_bpp::test::OdeLifetime;
 
 /// A box resting on the ground (frictional contacts) and a two-link pendulum on hinges.
 class SmallScene {

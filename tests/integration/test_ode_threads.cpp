@@ -20,13 +20,11 @@
 #include <vector>
 
 #include "ode_bpp/ode.h"
+#include "ode_lifetime.h"
 
 namespace {
 
-struct OdeLifetime {
-    OdeLifetime() { dInitODE2(0); }
-    ~OdeLifetime() { dCloseODE(); }
-};
+using ode_bpp::test::OdeLifetime;
 
 /// Separate islands: piles of frictional boxes (skyline path, > 32 rows) and hinge chains
 /// (dense path), far enough apart never to touch. nudge: box (k, level) starts nudge*(k+1)*(level+1)

@@ -152,6 +152,33 @@ TEST(LinalgCholesky, FactorsAColumnRangeExactlyAsTheWholeCall) {
     }
 }
 
+/// Columns tall enough to be factored in pairs (skyline_cholesky.cpp's kPairHeight, 256 rows):
+/// dense and wide envelopes, where neighbouring columns mostly share their earlier columns and
+/// sometimes do not (rows whose profiles start apart), with and without removed indices. The
+/// factor is the oracle's, and every partition into column ranges, which pairs the columns
+/// differently, gives the whole call's bits.
+TEST(LinalgCholesky, TallColumnsFactoredInPairsGiveTheSameBitsInEveryPartition) {
+    std::mt19937 rng(29);
+    for (int trial = 0; trial < 6; ++trial) {
+        const int n = 300 + static_cast<int>(rng() % 120);
+        const Case c = make_case(n, trial % 2 == 0 ? n : 40 + static_cast<int>(rng() % 200), rng, trial % 3 == 0 ? 1.0 : 0.0);
+        const SkylineMatrix A_lower = trial % 2 == 0 ? from_dense(c.A, SkylineShape::dense(n))
+                                                     : linalg::load_skyline(c.rows.data(), c.lda, n, nullptr);
+        const std::vector<char> removed = trial >= 4 ? random_removed(n, 0.2, rng) : std::vector<char>{};
+        SkylineMatrix whole = A_lower;
+        ASSERT_EQ(linalg::skyline_cholesky(whole, 0, removed), -1);
+        expect_factor_of_restriction(whole, c.A, removed);
+        for (int k1 : {1, 2, 3, 101, static_cast<int>(rng() % n)}) {
+            SkylineMatrix pieces = A_lower;
+            ASSERT_EQ(linalg::skyline_cholesky(pieces, 0, k1, removed), -1);
+            ASSERT_EQ(linalg::skyline_cholesky(pieces, k1, removed), -1);
+            for (int k = 0; k < n; ++k)
+                for (int r = k; r <= whole.sky(k); ++r)
+                    ASSERT_EQ(pieces.at(r, k), whole.at(r, k)) << "(" << r << "," << k << "), split at " << k1;
+        }
+    }
+}
+
 TEST(LinalgCholesky, ColumnRangeReportsABreakdownInsideItOnly) {
     const int n = 6;
     MatrixXd A = MatrixXd::Identity(n, n);

@@ -13,3 +13,12 @@
 #else
 #define KERNEL_FOR_AVX2_TOO
 #endif
+
+// GCC at -O2 vectorizes only loops that need no remainder loop after the vector one (its "very
+// cheap" cost model); a kernel whose row loop does need one asks for the dynamic model. Each
+// entry's operations stay the same, so the bits do too.
+#if defined(__GNUC__) && !defined(__clang__)
+#define KERNEL_VECTORIZED_WITH_REMAINDER __attribute__((optimize("vect-cost-model=dynamic")))
+#else
+#define KERNEL_VECTORIZED_WITH_REMAINDER
+#endif

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -110,6 +111,32 @@ void expect_solves(const linalg::IncrementalCholesky& f, const MatrixXd& M, cons
     for (int a = 0; a < m; ++a) EXPECT_NEAR(x[a], expected[a], tol) << "position " << a;
 }
 
+/// remove(p) on the dense factor L, one row at a time as incremental_cholesky.cpp documents it: row
+/// i takes the rotations of columns p+1 .. i-1 in turn, then defines its own. The exact sequence
+/// of operations that remove() must give, bit for bit, however it interleaves the rows.
+MatrixXd removed_row_at_a_time(const MatrixXd& L, int p) {
+    const int n = static_cast<int>(L.rows());
+    MatrixXd out = MatrixXd::Zero(n - 1, n - 1);
+    std::vector<double> c(static_cast<std::size_t>(n)), s(static_cast<std::size_t>(n));
+    for (int i = 0; i < p; ++i)
+        for (int k = 0; k <= i; ++k) out(i, k) = L(i, k);
+    for (int i = p + 1; i < n; ++i) {
+        for (int k = 0; k < p; ++k) out(i - 1, k) = L(i, k);
+        double sigma = L(i, p);
+        for (int k = p + 1; k < i; ++k) {
+            const double l = L(i, k);
+            out(i - 1, k - 1) = c[k] * l + s[k] * sigma;
+            sigma = c[k] * sigma - s[k] * l;
+        }
+        const double d = L(i, i);
+        const double r = std::sqrt(d * d + sigma * sigma);
+        c[i] = d / r;
+        s[i] = sigma / r;
+        out(i - 1, i - 1) = r;
+    }
+    return out;
+}
+
 /// Random appends (out of order) and removals (random positions) from a random half of M's rows.
 void random_moves(const MatrixXd& M, std::mt19937& rng) {
     const int n = static_cast<int>(M.rows());
@@ -130,9 +157,12 @@ void random_moves(const MatrixXd& M, std::mt19937& rng) {
             outside.erase(outside.begin() + static_cast<std::ptrdiff_t>(k));
         } else {
             const int p = static_cast<int>(rng() % S.size());
+            const MatrixXd expected = removed_row_at_a_time(factor_of(f), p);
             f.remove(p);
             outside.push_back(S[p]);
             S.erase(S.begin() + p);
+            for (int i = 0; i < f.size(); ++i)
+                for (int k = 0; k <= i; ++k) ASSERT_EQ(f.entry(i, k), expected(i, k)) << "(" << i << "," << k << ")";
         }
         expect_factor(f, M, S);
         expect_solves(f, M, S, rng);

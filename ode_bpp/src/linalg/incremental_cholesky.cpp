@@ -39,6 +39,7 @@ void IncrementalCholesky::reset(int capacity) {
     first_.resize(rows);
     inverse_pivot_.resize(rows);
     sigma_.resize(rows);
+    pending_row_.resize(rows);
     cos_.resize(rows);
     sin_.resize(rows);
 }
@@ -114,31 +115,55 @@ void IncrementalCholesky::remove(int p) {
     // new entries: that never passes an entry of row i not yet read (the rows shrink or keep
     // their length, and row p's entries are gone).
     std::size_t to_start = start_[static_cast<std::size_t>(p)];
-    for (int i = p + 1; i < size_; ++i) {
-        const int f = first(i);
-        const int new_first = f <= p ? f : f - 1;
-        const double* from = row_entries(i);  // from[k - f] = L(i, k)
-        double* to = L_.data() + to_start;      // to[k - new_first] = new L(i - 1, k)
-        double sigma = sigma_[i];
-        if (f < p) std::copy(from, from + (p - f), to);
-        for (int k = std::max(p + 1, f); k < i; ++k) {
-            const double l = from[k - f];
-            to[k - 1 - new_first] = cos_[k] * l + sin_[k] * sigma;
-            sigma = cos_[k] * sigma - sin_[k] * l;
-        }
-        const double d = from[i - f];
-        const double r = std::sqrt(d * d + sigma * sigma);
-        cos_[i] = d / r;
-        sin_[i] = sigma / r;
-        to[i - 1 - new_first] = r;
-        inverse_pivot_[static_cast<std::size_t>(i - 1)] = 1.0 / r;
-        first_[static_cast<std::size_t>(i - 1)] = new_first;
-        start_[static_cast<std::size_t>(i - 1)] = to_start;
-        to_start += static_cast<std::size_t>(i - new_first);
+    int i = p + 1;
+    for (; i + 1 < size_; i += 2) to_start = rotate_row_pair(p, i, to_start);
+    if (i < size_) {
+        RotatedRow row(*this, p, i, L_.data() + to_start);
+        row.rotate_from(row.k_begin, i);
+        to_start = row.finish(to_start);
     }
     start_[static_cast<std::size_t>(size_ - 1)] = to_start;
     start_.pop_back();
     --size_;
+}
+
+IncrementalCholesky::RotatedRow::RotatedRow(IncrementalCholesky& factor, int p, int i, double* to)
+    : factor(factor), i(i), f(factor.first(i)), new_first(f <= p ? f : f - 1), k_begin(std::max(p + 1, f)),
+      from(factor.row_entries(i)), to(to), sigma(factor.sigma_[i]) {
+    if (f < p) std::copy(from, from + (p - f), to);
+}
+
+std::size_t IncrementalCholesky::RotatedRow::finish(std::size_t to_start) {
+    const double d = from[i - f];
+    const double r = std::sqrt(d * d + sigma * sigma);
+    factor.cos_[i] = d / r;
+    factor.sin_[i] = sigma / r;
+    to[i - 1 - new_first] = r;
+    factor.inverse_pivot_[static_cast<std::size_t>(i - 1)] = 1.0 / r;
+    factor.first_[static_cast<std::size_t>(i - 1)] = new_first;
+    factor.start_[static_cast<std::size_t>(i - 1)] = to_start;
+    return to_start + static_cast<std::size_t>(i - new_first);
+}
+
+std::size_t IncrementalCholesky::rotate_row_pair(int p, int i, std::size_t to_start) {
+    // Row i+1's new entries go to a buffer first: in place they could land on its own entries not
+    // yet read, which row i's sequence leaves alone only when the rows take their turns.
+    RotatedRow a(*this, p, i, L_.data() + to_start);
+    RotatedRow b(*this, p, i + 1, pending_row_.data());
+    // Both rows meet the rotations k < i; each row's dependent chain runs beside the other's, and
+    // each takes its own rotations in their order, so the bits are those of one row at a time.
+    const int shared = std::max(a.k_begin, b.k_begin);
+    a.rotate_from(a.k_begin, std::min(shared, i));
+    b.rotate_from(b.k_begin, std::min(shared, i));
+    for (int k = shared; k < i; ++k) {
+        a.rotate(k);
+        b.rotate(k);
+    }
+    to_start = a.finish(to_start);
+    b.rotate_from(std::max(b.k_begin, i), i + 1);  // the rotation row i has just defined
+    const std::size_t end = b.finish(to_start);
+    std::copy(pending_row_.data(), pending_row_.data() + (end - to_start), L_.data() + to_start);
+    return end;
 }
 
 namespace {

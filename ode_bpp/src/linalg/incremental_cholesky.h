@@ -87,12 +87,39 @@ private:
     /// Room for `entries` stored entries, the current ones kept.
     void grow(std::size_t entries);
 
+    /// One row i of remove(p) in flight: its old entries (from), where its new ones go (to, from
+    /// column new_first), and its running sigma.
+    struct RotatedRow {
+        RotatedRow(IncrementalCholesky& factor, int p, int i, double* to);
+        /// Rotation k (already defined: k < i) applied to the row.
+        void rotate(int k) {
+            const double l = from[k - f];
+            to[k - 1 - new_first] = factor.cos_[k] * l + factor.sin_[k] * sigma;
+            sigma = factor.cos_[k] * sigma - factor.sin_[k] * l;
+        }
+        void rotate_from(int k0, int k1) {
+            for (int k = k0; k < k1; ++k) rotate(k);
+        }
+        /// The row's own rotation and pivot, its position i-1 recorded at to_start; returns the
+        /// next row's start.
+        std::size_t finish(std::size_t to_start);
+
+        IncrementalCholesky& factor;
+        const int i, f, new_first, k_begin;
+        const double* from;
+        double* to;
+        double sigma;
+    };
+    /// Rows i and i+1 of remove(p) rotated together; returns where the row after them goes.
+    std::size_t rotate_row_pair(int p, int i, std::size_t to_start);
+
     int size_ = 0;
     PageArray L_;                      ///< row i at start_[i] .. start_[i+1]-1: L(i, first_[i] .. i)
     std::vector<std::size_t> start_;   ///< size_ + 1 offsets into L_
     std::vector<int> first_;           ///< each row's first column
     std::vector<double> inverse_pivot_;      ///< 1 / L(i, i), by position
     std::vector<double> sigma_, cos_, sin_;  ///< remove(): sigma and the rotations, by position
+    std::vector<double> pending_row_;        ///< remove(): a row's new entries before they move in
 };
 
 }  // namespace ode_bpp::linalg

@@ -124,8 +124,8 @@ void subtract_group(double* target, SourceGroup& g) {
 /// is computed exactly as subtract_combination<8> computes it (same products, same order), so
 /// the bits are those of two calls. t0: column k from row k; t1: column k+1 from row k+1.
 /// Columns k, k+1 and the members are disjoint parts of L (restrict).
-[[gnu::always_inline]] KERNEL_VECTORIZED_WITH_REMAINDER inline void subtract_eight_pair(double* __restrict t0, double* __restrict t1,
-                                                       const SourceGroup& g0, const SourceGroup& g1, int from, int to) {
+[[gnu::always_inline]] KERNEL_VECTORIZED_WITH_REMAINDER inline void subtract_eight_pair(
+    double* __restrict t0, double* __restrict t1, const SourceGroup& g0, const SourceGroup& g1, int from, int to) {
     const double* __restrict s0 = g0.source[0];
     const double* __restrict s1 = g0.source[1];
     const double* __restrict s2 = g0.source[2];

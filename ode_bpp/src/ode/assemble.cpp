@@ -35,7 +35,6 @@ void earlier_neighbours(const dMLCP& p, const Incidence& inc, int joint, std::ve
     out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-
 /// The six entries of a row of J M^-1 that meet J's six for one body (ODE pads each half to four).
 struct JinvMEntries {
     double m0, m1, m2, m4, m5, m6;

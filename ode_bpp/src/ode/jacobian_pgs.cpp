@@ -168,8 +168,8 @@ std::string why(const Options& o, const Oversize& oversize) {
     std::ostringstream m;
     if (oversize.measure == Oversize::Measure::FactorEntries) m << "the Cholesky factor would hold ";
     else m << "A would hold at least ";
-    m << oversize.entries << " entries, more than max_factor_entries = " << o.max_factor_entries << "; answered by " << std::max(0, o.pgs_iterations)
-      << " sweeps of projected Gauss-Seidel on J and J M^-1, without forming A";
+    m << oversize.entries << " entries, more than max_factor_entries = " << o.max_factor_entries
+      << "; answered by " << std::max(0, o.pgs_iterations) << " sweeps of projected Gauss-Seidel on J and J M^-1, without forming A";
     return m.str();
 }
 

@@ -17,8 +17,7 @@ namespace {
 /// A), in `order`, or in the joint graph's order, which `order` then becomes.
 std::int64_t factor_entries(const Problem& problem, const Options& options, std::vector<int>& order) {
     const Method strategy = pivoting::strategy_of(problem, options);
-    const auto n = static_cast<std::int64_t>(problem.n);
-    if (!pivoting::strategy_orders(strategy)) return n * (n + 1) / 2;
+    if (!pivoting::strategy_orders(strategy)) return pivoting::dense_triangle_entries(problem.n);
     if (!ordering::is_permutation(order, problem.n)) order = ordering::block_ordering(strategy, problem);
     const std::vector<int> first =
         ordering::block_row_profile(problem.num_blocks, problem.block_row, problem.block_body, order);

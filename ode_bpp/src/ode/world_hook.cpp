@@ -191,13 +191,18 @@ void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
     ws.last = std::move(r);  // no copy of its vectors per island
 }
 
-/// ode::oversize for an island the hook would assemble: its A or its factor past the limit, or
-/// None. The factor is counted in scratch.start.ordering, the remembered order, or else in the one
-/// it sets there for the solve.
-ode::Oversize island_past_the_limit(const dMLCP& island, const IslandPlan& plan, IslandScratch& scratch) {
-    if (plan.small || !pivoting::factor_may_be_too_large(island.m, plan.options)) return {};
-    return ode::oversize(island, scratch.view.rows_of(island), plan.options, scratch.start.ordering,
-                         scratch.rows_on_body);
+/// An island whose A or factor would pass the limit (ode::oversize, counted in
+/// scratch.start.ordering, the remembered order, or else in the one it sets there for the solve),
+/// answered without forming A (ode/jacobian_pgs.h) into r; false, r untouched, for any other.
+bool answered_past_the_limit(const dMLCP& island, const IslandPlan& plan, IslandScratch& scratch, Result& r) {
+    if (plan.small || !pivoting::factor_may_be_too_large(island.m, plan.options)) return false;
+    const Problem rows = scratch.view.rows_of(island);
+    const ode::Oversize oversize =
+        ode::oversize(island, rows, plan.options, scratch.start.ordering, scratch.rows_on_body);
+    if (!oversize) return false;
+    r = ode::solve_by_jacobian_pgs(island, rows, plan.options, oversize, Strided{island.pairsbx + 1, 2},
+                                   scratch.jacobian_pgs);
+    return true;
 }
 
 dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
@@ -211,11 +216,7 @@ dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* u
     const IslandPlan plan = plan_island(*problem, method, known_rows, use_memory, scratch);
     // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
     Result r;
-    const ode::Oversize oversize = island_past_the_limit(*problem, plan, scratch);
-    if (oversize) {  // answered without forming A (ode/jacobian_pgs.h)
-        r = ode::solve_by_jacobian_pgs(*problem, scratch.view.rows_of(*problem), plan.options, oversize,
-                                       Strided{problem->pairsbx + 1, 2}, scratch.jacobian_pgs);
-    } else {
+    if (!answered_past_the_limit(*problem, plan, scratch, r)) {
         const Problem q = scratch.view.of(*problem, plan.small, scratch.start.ordering);
         r = solve(q, plan.options, Strided{problem->pairsbx + 1, 2}, scratch.start, scratch.workspace);
     }

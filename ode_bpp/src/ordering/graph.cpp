@@ -127,7 +127,8 @@ std::vector<int> block_row_profile(int num_blocks, const int* block_row, const i
     for (int block = 0; block < num_blocks; ++block) {
         int earliest = block_first[block];
         for (int side = 0; side < 2; ++side)
-            if (const int body = block_body[2 * block + side]; body >= 0) earliest = std::min(earliest, body_first[body]);
+            if (const int body = block_body[2 * block + side]; body >= 0)
+                earliest = std::min(earliest, body_first[body]);
         for (int row = block_row[block]; row < block_row[block + 1]; ++row) first[position[row]] = earliest;
     }
     return first;

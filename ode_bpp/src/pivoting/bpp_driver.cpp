@@ -217,17 +217,20 @@ bool strategy_orders(Method strategy) { return strategy == Method::Bpp || strate
 
 bool is_bpp(Method m) { return m == Method::BppChol || m == Method::BppDown || m == Method::BppSky || m == Method::Bpp; }
 
-bool factor_may_be_too_large(int n, const Options& o) {
+std::int64_t dense_triangle_entries(int n) {
     const auto rows = static_cast<std::int64_t>(n);
-    return is_bpp(o.method) && o.max_factor_entries > 0 && rows * (rows + 1) / 2 > o.max_factor_entries;
+    return rows * (rows + 1) / 2;
+}
+
+bool factor_may_be_too_large(int n, const Options& o) {
+    return is_bpp(o.method) && o.max_factor_entries > 0 && dense_triangle_entries(n) > o.max_factor_entries;
 }
 
 std::int64_t planned_factor_entries(const Problem& problem, const linalg::SymmetricRows& A, const Options& options,
                                     const Start& start, linalg::SymmetricRows& scratch, std::vector<int>& chosen) {
     chosen.clear();
-    const auto n = static_cast<std::int64_t>(problem.n);
     const Method strategy = strategy_of(problem, options);
-    if (!strategy_orders(strategy)) return n * (n + 1) / 2;
+    if (!strategy_orders(strategy)) return dense_triangle_entries(problem.n);
     const auto envelope = [](const std::vector<int>& first) {
         return static_cast<std::int64_t>(linalg::SkylineShape::size_of_row_profile(first));
     };

@@ -32,8 +32,12 @@ Method strategy_of(const Problem& problem, const Options& options);
 /// problem's order, densely).
 bool strategy_orders(Method strategy);
 
+/// n (n + 1) / 2: the entries of an n-row dense triangle, which the strategies that do not order
+/// factor in, and the most any factor of n rows holds.
+std::int64_t dense_triangle_entries(int n);
+
 /// True when a BPP method's factor of an n-row island might exceed Options::max_factor_entries:
-/// its dense triangle n (n + 1) / 2 would. An island within the limit that way is not ordered or
+/// its dense triangle (dense_triangle_entries) would. An island within the limit that way is not ordered or
 /// counted to find out (solve() and the world hook both ask this first).
 bool factor_may_be_too_large(int n, const Options& options);
 

@@ -2,8 +2,10 @@
 // removals (first, last, middle or random positions), the factor is the Cholesky factor of M_SS in
 // S's order (against Eigen's LLT of M_SS gathered afresh, and L Lᵀ reconstructed from the
 // factor's own entries), solve() is M_SS⁻¹, the recorded envelope holds every non-zero of that
-// factor, and a dependent row is refused. Banded matrices (small envelopes) and arbitrary sparse
-// and dense SPD matrices.
+// factor, and a dependent row is refused. Appends, removals and solves also give, bit for bit,
+// the row-at-a-time operations that incremental_cholesky.cpp documents (its dot products' four
+// partial sums included), so a faster kernel must keep them. Banded matrices (small envelopes)
+// and arbitrary sparse and dense SPD matrices.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -137,6 +139,78 @@ MatrixXd removed_row_at_a_time(const MatrixXd& L, int p) {
     return out;
 }
 
+/// sum_j a_j b_j in the order incremental_cholesky.cpp documents: term j into partial sum j mod 4,
+/// in increasing j, then (s0 + s1) + (s2 + s3).
+double dot_in_four_sums(const std::vector<double>& a, const std::vector<double>& b) {
+    double s[4] = {0, 0, 0, 0};
+    for (std::size_t j = 0; j < a.size(); ++j) s[j % 4] += a[j] * b[j];
+    return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
+/// y_k <- (y_k - L(k, from:k) . y(from:k)) / L(k, k) for k = first .. m-1, from = max(first(k),
+/// first), one row at a time: the exact operations append() and solve() must give, bit for bit,
+/// however they interleave the rows. y[k - first] holds entry k.
+void forward_row_at_a_time(const linalg::IncrementalCholesky& f, std::vector<double>& y, int first, int m) {
+    for (int k = first; k < m; ++k) {
+        const int from = std::max(f.first(k), first);
+        std::vector<double> l_row, y_part;
+        for (int c = from; c < k; ++c) {
+            l_row.push_back(f.entry(k, c));
+            y_part.push_back(y[static_cast<std::size_t>(c - first)]);
+        }
+        double& yk = y[static_cast<std::size_t>(k - first)];
+        yk = (yk - dot_in_four_sums(l_row, y_part)) * (1.0 / f.entry(k, k));
+    }
+}
+
+/// The row that appending `column` (entries first .. m-1) to f must give, L(m, first .. m).
+std::vector<double> appended_row_at_a_time(const linalg::IncrementalCholesky& f, const std::vector<double>& column,
+                                           int first, double diagonal) {
+    const int m = f.size();
+    std::vector<double> l(column.begin() + first, column.end());
+    forward_row_at_a_time(f, l, first, m);
+    l.push_back(std::sqrt(diagonal - dot_in_four_sums(l, l)));
+    return l;
+}
+
+/// x <- (L Lᵀ)⁻¹ x as solve() must give it: forward_row_at_a_time, then by columns of Lᵀ.
+std::vector<double> solved_row_at_a_time(const linalg::IncrementalCholesky& f, std::vector<double> x) {
+    const int m = f.size();
+    forward_row_at_a_time(f, x, 0, m);
+    for (int i = m - 1; i >= 0; --i) {
+        const double xi = x[static_cast<std::size_t>(i)] * (1.0 / f.entry(i, i));
+        x[static_cast<std::size_t>(i)] = xi;
+        for (int k = f.first(i); k < i; ++k) x[static_cast<std::size_t>(k)] -= xi * f.entry(i, k);
+    }
+    return x;
+}
+
+/// append(), its new row compared entry for entry with appended_row_at_a_time.
+bool append_bit_for_bit(linalg::IncrementalCholesky& f, const MatrixXd& M, std::vector<int>& S, int j) {
+    const int m = static_cast<int>(S.size());
+    int first = 0;
+    while (first < m && M(S[first], j) == 0.0) ++first;
+    std::vector<double> column(static_cast<std::size_t>(m));
+    for (int k = first; k < m; ++k) column[k] = M(S[k], j);
+    const std::vector<double> expected = appended_row_at_a_time(f, column, first, M(j, j));
+    if (!append(f, M, S, j)) return false;
+    for (int k = 0; k <= m; ++k) {
+        const double want = k < first ? 0.0 : expected[static_cast<std::size_t>(k - first)];
+        EXPECT_EQ(f.entry(m, k), want) << "(" << m << "," << k << ")";
+    }
+    return true;
+}
+
+/// solve() on a random right-hand side, compared entry for entry with solved_row_at_a_time.
+void expect_solve_bits(const linalg::IncrementalCholesky& f, std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<double> x(static_cast<std::size_t>(f.size()));
+    for (double& v : x) v = u(rng);
+    const std::vector<double> expected = solved_row_at_a_time(f, x);
+    f.solve(x.data());
+    for (std::size_t i = 0; i < x.size(); ++i) ASSERT_EQ(x[i], expected[i]) << "position " << i;
+}
+
 /// Random appends (out of order) and removals (random positions) from a random half of M's rows.
 void random_moves(const MatrixXd& M, std::mt19937& rng) {
     const int n = static_cast<int>(M.rows());
@@ -146,14 +220,14 @@ void random_moves(const MatrixXd& M, std::mt19937& rng) {
     for (int i = 0; i < n; ++i) (rng() % 2 ? S : outside).push_back(i);
     std::vector<int> start = S;
     S.clear();
-    for (int i : start) ASSERT_TRUE(append(f, M, S, i));
+    for (int i : start) ASSERT_TRUE(append_bit_for_bit(f, M, S, i));
     expect_tight_envelope(f, M, S);
     expect_factor(f, M, S);
     expect_solves(f, M, S, rng);
     for (int move = 0; move < 3 * n; ++move) {
         if (!outside.empty() && (S.empty() || rng() % 2)) {
             const std::size_t k = rng() % outside.size();
-            ASSERT_TRUE(append(f, M, S, outside[k]));
+            ASSERT_TRUE(append_bit_for_bit(f, M, S, outside[k]));
             outside.erase(outside.begin() + static_cast<std::ptrdiff_t>(k));
         } else {
             const int p = static_cast<int>(rng() % S.size());
@@ -166,6 +240,7 @@ void random_moves(const MatrixXd& M, std::mt19937& rng) {
         }
         expect_factor(f, M, S);
         expect_solves(f, M, S, rng);
+        expect_solve_bits(f, rng);
     }
 }
 

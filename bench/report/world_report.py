@@ -310,12 +310,15 @@ def limit_table(lines, world, bench, targets):
                  "index set it returned, both summed over a frame's islands; an MLCP observer captures each island before "
                  "its solve and times the limit after it, outside the timed call. *Corpus*: the same over the captured "
                  "corpus, where bpp solves cold (ordering included, no warm start). *One step*: frames on whose every island "
-                 "bpp took one pivot step per fixed-bound solve (two with friction rows, Frozen friction).\n")
-    lines.append("| scene | frames inside ODE | bpp / limit median | p95 | one-step frames | their median | corpus frames | corpus median | corpus one-step median | old limit (re-solve) median |")
-    lines.append("|---|---|---|---|---|---|---|---|---|---|")
+                 "bpp took one pivot step per fixed-bound solve (two with friction rows, Frozen friction). *With A*: the "
+                 "same one-step frames over the limit plus the least time to form A from J (the assembly with its pattern "
+                 "known, timed alone after the solve: bench/world/assembly_time.h), work that the limit leaves out and "
+                 "that no solver given ODE's sparse form can skip; the target stays on the limit alone.\n")
+    lines.append("| scene | frames inside ODE | bpp / limit median | p95 | one-step frames | their median | with A | corpus frames | corpus median | corpus one-step median | old limit (re-solve) median |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|")
     frames = frames_of(rows)
     for scene in PAPER_SCENES:
-        ratios, simple = [], []
+        ratios, simple, with_a = [], [], []
         for (s, _), islands in frames.items():
             if s != scene:
                 continue
@@ -326,11 +329,14 @@ def limit_table(lines, world, bench, targets):
             ratios.append(t / lim)
             if all(one_step_per_solve(r) for r in islands):
                 simple.append(t / lim)
+                assembly = sum(num(r.get("assembly_us", "nan")) for r in islands)
+                if assembly >= 0:
+                    with_a.append(t / (lim + assembly))
         corpus = corpus_ratios(bench, scene)
         med_simple = common.quantile(simple, 0.5)
         lines.append(f"| {scene} | {len(ratios)} | {ratio(common.quantile(ratios, 0.5))} | {ratio(common.quantile(ratios, 0.95))} | "
-                     f"{len(simple)} | {ratio(med_simple)} | {corpus['frames']} | {ratio(corpus['median'])} | "
-                     f"{ratio(corpus['one_step'])} | {ratio(corpus['old'])} |")
+                     f"{len(simple)} | {ratio(med_simple)} | {ratio(common.quantile(with_a, 0.5))} | {corpus['frames']} | "
+                     f"{ratio(corpus['median'])} | {ratio(corpus['one_step'])} | {ratio(corpus['old'])} |")
         if ratios:
             targets.add(f"{scene}: bpp / physical limit inside ODE, median over one-step frames",
                         f"{med_simple:.2f} ({len(simple)} of {len(ratios)} frames)", f"≤ {LIMIT_TARGET}",

@@ -15,8 +15,9 @@
 //       method meets the same machine load; `islands` builds C copies of one island (island_family.h)
 //   bench_world_step limit   --scene NAME [--method M] [--seconds S] --csv FILE
 //       one row per island: the solver's own time inside dWorldStep (M, default bpp, warm-started
-//       as always) and the physical limit of its final index set (physical_limit.h), measured
-//       by an MLCP observer outside the timed solve
+//       as always), the physical limit of its final index set (physical_limit.h) and the least
+//       time to form its A from J (assembly_time.h), measured by an MLCP observer outside the
+//       timed solve
 //
 // Methods (world_method.h): an MLCP solver name for dWorldStep ("bpp", "dantzig", ...),
 // "quickstep-<k>" for dWorldQuickStep with k iterations, "quickstep-<solver>" for dWorldQuickStep
@@ -39,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "assembly_time.h"
 #include "island_family.h"
 #include "ode_bpp/capture.h"
 #include "ode_bpp/ode.h"
@@ -338,11 +340,13 @@ int run_islands(const Cli& cli) {
 }
 
 
-const char* kLimitHeader = "scene,method,step,island,rows,friction_rows,pivots,status,solve_us,physical_limit_us";
+const char* kLimitHeader =
+    "scene,method,step,island,rows,friction_rows,pivots,status,solve_us,physical_limit_us,assembly_us";
 constexpr int kLimitRepeat = 3;  // rounds of the physical limit's timing (median)
 
 /// The MLCP observer of `limit`: captures each island before its solve and, after it, writes the
-/// solver's time and the physical limit of the index set it returned.
+/// solver's time, the physical limit of the index set it returned and the least time to form its
+/// A (timed after the solve, like the limit, so that neither warms the solve's caches).
 struct LimitProbe {
     std::ofstream* csv = nullptr;
     std::string scene, method;
@@ -364,11 +368,12 @@ void observe_limit(const dMLCP* problem, const dMLCPIslandStats* stats, void* us
     const ode_bpp::Result result = ode_bpp::last_island_result(problem->world);
     const bool answered = stats->status != dMLCPFailed && static_cast<int>(result.states.size()) == file.n;
     const double limit = answered ? ode_bpp::bench::physical_limit_us(file, result.states, kLimitRepeat) : kNaN;
+    const double assembly = ode_bpp::bench::assembly_time_us(*problem, kLimitRepeat);
     const long friction = std::count_if(file.findex.begin(), file.findex.end(), [](int f) { return f >= 0; });
     *probe->csv << probe->scene << ',' << probe->method << ',' << probe->step << ',' << probe->island++ << ','
                 << file.n << ',' << friction << ',' << stats->pivots << ','
                 << (stats->status == dMLCPSolved ? "solved" : stats->status == dMLCPSolvedByFallback ? "fallback" : "failed")
-                << ',' << 1e6 * stats->seconds << ',' << limit << '\n';
+                << ',' << 1e6 * stats->seconds << ',' << limit << ',' << assembly << '\n';
     probe->pending.reset();
 }
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstddef>
 #include <limits>
+#include <utility>
 
 #include "linalg/envelope.h"
 #include "linalg/skyline_cholesky.h"
@@ -15,10 +16,6 @@ namespace ode_bpp::bench {
 
 namespace {
 
-// Entries factored per timed round, summed over the copies: about 2 MB of envelope, far above
-// the clock's resolution even for a 1-row island, and within the second-level cache of most machines.
-constexpr std::ptrdiff_t kEntriesPerRound = 1 << 18;
-constexpr int kMaxCopies = 2000;
 
 /// The free rows in the file's Cuthill-McKee order: perm_F[new] = old (original row index).
 std::vector<int> free_rows_in_order(const MlcpFile& file, const std::vector<RowState>& states) {
@@ -56,8 +53,7 @@ double physical_limit_us(const MlcpFile& file, const std::vector<RowState>& stat
     const linalg::SkylineMatrix loaded = linalg::load_skyline(a_ff.data(), m, m, nullptr);
     std::vector<double> rhs(static_cast<std::size_t>(m));
     for (int i = 0; i < m; ++i) rhs[static_cast<std::size_t>(i)] = file.b[static_cast<std::size_t>(rows[i])];
-    const std::ptrdiff_t entries = loaded.shape().size() + m;
-    const int copies = static_cast<int>(std::clamp<std::ptrdiff_t>(kEntriesPerRound / entries, 1, kMaxCopies));
+    const int copies = calls_per_round(loaded.shape().size() + m);
     std::vector<double> times;
     for (int round = 0; round < std::max(1, repeat); ++round) {
         std::vector<linalg::SkylineMatrix> factors(static_cast<std::size_t>(copies), loaded);
@@ -70,6 +66,18 @@ double physical_limit_us(const MlcpFile& file, const std::vector<RowState>& stat
         }
         times.push_back(microseconds_since(start) / copies);
     }
+    return median_round(std::move(times));
+}
+
+int calls_per_round(std::int64_t entries_per_call) {
+    // about 2 MB of doubles per round, summed over the calls
+    constexpr std::int64_t kEntriesPerRound = 1 << 18;
+    constexpr std::int64_t kMaxCalls = 2000;
+    return static_cast<int>(std::clamp<std::int64_t>(kEntriesPerRound / std::max<std::int64_t>(entries_per_call, 1), 1,
+                                                     kMaxCalls));
+}
+
+double median_round(std::vector<double> times) {
     std::sort(times.begin(), times.end());
     return times[times.size() / 2];
 }

@@ -3,6 +3,7 @@
 // (skyline) storage plus one solve with it, timed alone.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "ode_bpp/io.h"
@@ -17,5 +18,13 @@ namespace ode_bpp::bench {
 /// envelope to last well above the clock's resolution and reports the time per copy.
 /// Returns 0 when F is empty and NaN when A_FF is not positive definite in floating point.
 double physical_limit_us(const MlcpFile& file, const std::vector<RowState>& states, int repeat);
+
+/// Calls per timed round of a kernel that touches `entries_per_call` stored entries: enough for
+/// about 2^18 entries per round (far above the clock's resolution even for a 1-row island, within
+/// the second-level cache of most machines), at least 1 and at most 2000.
+int calls_per_round(std::int64_t entries_per_call);
+
+/// The median of the rounds' times (the upper one of an even count); times: non-empty.
+double median_round(std::vector<double> times);
 
 }  // namespace ode_bpp::bench

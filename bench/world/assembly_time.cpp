@@ -5,29 +5,22 @@
 #include <chrono>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "linalg/symmetric_rows.h"
 #include "ode/assemble.h"
+#include "physical_limit.h"
 
 namespace ode_bpp::bench {
-
-namespace {
-
-// Stored entries written per timed round, summed over the assemblies: as physical_limit.cpp
-// sizes its rounds, far above the clock's resolution even for a 1-row island.
-constexpr std::int64_t kEntriesPerRound = 1 << 18;
-constexpr int kMaxAssemblies = 2000;
-
-}  // namespace
 
 double assembly_time_us(const dMLCP& island, int repeat) {
     if (!ode::has_sparse_form(island)) return std::numeric_limits<double>::quiet_NaN();
     linalg::SymmetricRows rows;
     ode::AssemblyBuffers buffers;
     ode::assemble_rows(island, rows, buffers);  // finds the pattern; the timed calls reuse it
-    const std::int64_t entries = std::max<std::int64_t>(std::int64_t{rows.n()} + rows.off_diagonal_entries(), 1);
-    const auto assemblies = static_cast<int>(std::clamp<std::int64_t>(kEntriesPerRound / entries, 1, kMaxAssemblies));
+    // rounds sized as the physical limit's: entries written per assembly
+    const int assemblies = calls_per_round(std::int64_t{rows.n()} + rows.off_diagonal_entries());
     std::vector<double> times;
     for (int round = 0; round < std::max(1, repeat); ++round) {
         const auto start = std::chrono::steady_clock::now();
@@ -35,8 +28,7 @@ double assembly_time_us(const dMLCP& island, int repeat) {
         times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() /
                         assemblies);
     }
-    std::sort(times.begin(), times.end());
-    return times[times.size() / 2];
+    return median_round(std::move(times));
 }
 
 }  // namespace ode_bpp::bench

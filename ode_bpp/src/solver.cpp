@@ -402,6 +402,7 @@ Result solve(const Problem& caller_problem, const Options& options, Strided x, c
     }
     std::vector<double>& answer = parts.answer;
     Result small_attempt;
+    if (small) small_attempt.states.swap(parts.spare_states);  // its capacity, not its entries
     if (small && solve_small(problem, options, start, parts.small_island, answer, small_attempt, x)) {
         if (wants_polish(options, small_attempt) &&
             polish(problem, rows_of(problem, parts.rows), options, parts, small_attempt, answer)) {

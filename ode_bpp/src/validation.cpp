@@ -149,11 +149,19 @@ bool blocks_pass(const Problem& p) {
     return true;
 }
 
+/// The tests of check_sizes (with_matrix) or check_vector_sizes, as one test that names nothing.
+bool sizes_pass(const Problem& p, bool with_matrix) {
+    if (p.n <= 0 || p.b.data == nullptr || p.lo.data == nullptr || p.hi.data == nullptr) return false;
+    if (p.b.stride < 1 || p.lo.stride < 1 || p.hi.stride < 1 || p.nub < 0 || p.nub > p.n) return false;
+    if (!with_matrix) return true;
+    return p.sparse != nullptr ? p.sparse->n() == p.n : p.A != nullptr && p.lda >= p.n;
+}
+
 /// True only where check_sizes, check_findex, check_bounds and check_blocks all pass, in one
 /// pass that builds no result or message: on islands of a few rows the four checks' results
 /// cost a tenth of the solve. A false sends the caller to those checks, which name the defect.
 bool structure_passes(const Problem& p, bool with_matrix) {
-    if (!(with_matrix ? check_sizes(p) : check_vector_sizes(p)).valid) return false;
+    if (!sizes_pass(p, with_matrix)) return false;
     for (int i = 0; i < p.n; ++i)
         if (!row_passes(p, i)) return false;
     return blocks_pass(p);

@@ -12,6 +12,8 @@ Workspace::Parts& Workspace::parts() {
     return *parts_;
 }
 
+void Workspace::recycle(Result&& spent) { parts().spare_states.swap(spent.states); }
+
 Workspace& thread_workspace() {
     thread_local Workspace workspace;
     return workspace;

@@ -23,6 +23,9 @@ struct Workspace::Parts {
     ResidualBuffers residuals;
     /// The answer in the caller's order before it is copied into the caller's x.
     std::vector<double> answer;
+    /// A spent Result's index set (Workspace::recycle), whose capacity the next small-island
+    /// Result takes over.
+    std::vector<RowState> spare_states;
 };
 
 /// The workspace of the calling thread, for the overloads of solve() without one.

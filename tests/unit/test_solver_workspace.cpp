@@ -1,6 +1,7 @@
 // solve() in an explicit Workspace (ode_bpp/workspace.h): the same answers as in the thread's own
 // workspace whatever the workspace solved before, independent workspaces on concurrent threads,
-// and a warm small-island solve that allocates nothing beyond its Result.
+// a warm small-island solve that allocates nothing beyond its Result, and nothing at all once a
+// spent Result has been recycled.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -118,6 +119,26 @@ TEST(SolverWorkspace, AWarmSmallIslandSolveAllocatesOnlyItsResultsIndexSet) {
     const long allocations = g_allocations.load() - before;
     ASSERT_EQ(r.status, Status::Converged);
     EXPECT_EQ(allocations, 1) << "Result::states only";
+}
+
+TEST(SolverWorkspace, ASmallIslandSolveAfterARecycledResultAllocatesNothing) {
+    const auto p = problems::random_boxed_mlcp(6, 2, 1, 1e3, 5);
+    Options o;
+    o.record_steps = false;
+    Workspace workspace;
+    std::vector<double> x(p.n);
+    Result spent = solve(p, o, Strided{x.data(), 1}, {}, workspace);
+    ASSERT_EQ(spent.status, Status::Converged);
+    const std::vector<RowState> expected = spent.states;
+    const RowState* storage = spent.states.data();
+    workspace.recycle(std::move(spent));
+    const long before = g_allocations.load();
+    const Result r = solve(p, o, Strided{x.data(), 1}, {}, workspace);
+    const long allocations = g_allocations.load() - before;
+    ASSERT_EQ(r.status, Status::Converged);
+    EXPECT_EQ(allocations, 0);
+    EXPECT_EQ(r.states.data(), storage) << "the recycled index set's storage";
+    EXPECT_EQ(r.states, expected);
 }
 
 }  // namespace

@@ -178,9 +178,10 @@ IslandPlan plan_island(const dMLCP& problem, Method method, bool known_rows, boo
     return plan;
 }
 
-/// The answer's index set and ordering kept for the next step; r is the world's last result.
+/// The answer's index set and ordering kept for the next step; r becomes the world's last result,
+/// and r is left holding the previous last result's index set (its storage, for recycling).
 void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, bool use_memory, bool usable,
-                 IslandScratch& scratch, Result&& r) {
+                 IslandScratch& scratch, Result& r) {
     std::lock_guard<std::mutex> g(hook().lock);
     WorldState& ws = hook().worlds[problem.world];  // looked up again: forget_world may have run meanwhile
     if (use_memory && usable)
@@ -188,21 +189,25 @@ void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
     if (known_rows && !plan.small && !r.ordering.empty() &&
         (!plan.ordering_remembered || r.ordering != scratch.start.ordering))
         ws.orderings.store(scratch.structure, r.ordering, problem.step);
+    std::vector<RowState> previous = std::move(ws.last.states);
     ws.last = std::move(r);  // no copy of its vectors per island
+    r.states = std::move(previous);
 }
 
-/// An island whose A or factor would pass the limit (ode::oversize, counted in
-/// scratch.start.ordering, the remembered order, or else in the one it sets there for the solve),
-/// answered without forming A (ode/jacobian_pgs.h) into r; false, r untouched, for any other.
-bool answered_past_the_limit(const dMLCP& island, const IslandPlan& plan, IslandScratch& scratch, Result& r) {
-    if (plan.small || !pivoting::factor_may_be_too_large(island.m, plan.options)) return false;
-    const Problem rows = scratch.view.rows_of(island);
-    const ode::Oversize oversize =
-        ode::oversize(island, rows, plan.options, scratch.start.ordering, scratch.rows_on_body);
-    if (!oversize) return false;
-    r = ode::solve_by_jacobian_pgs(island, rows, plan.options, oversize, Strided{island.pairsbx + 1, 2},
-                                   scratch.jacobian_pgs);
-    return true;
+/// The island's answer, x written in place into pairsbx[2i+1] (A, b, lo, hi only read). An
+/// island whose A or factor would pass the limit (ode::oversize, counted in
+/// scratch.start.ordering, the remembered order, or else in the one it sets there for the solve)
+/// is answered without forming A (ode/jacobian_pgs.h); any other by solve().
+Result answer_of(const dMLCP& island, const IslandPlan& plan, IslandScratch& scratch) {
+    const Strided x{island.pairsbx + 1, 2};
+    if (!plan.small && pivoting::factor_may_be_too_large(island.m, plan.options)) {
+        const Problem rows = scratch.view.rows_of(island);
+        const ode::Oversize oversize =
+            ode::oversize(island, rows, plan.options, scratch.start.ordering, scratch.rows_on_body);
+        if (oversize) return ode::solve_by_jacobian_pgs(island, rows, plan.options, oversize, x, scratch.jacobian_pgs);
+    }
+    const Problem q = scratch.view.of(island, plan.small, scratch.start.ordering);
+    return solve(q, plan.options, x, scratch.start, scratch.workspace);
 }
 
 dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* userdata) {
@@ -214,19 +219,14 @@ dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* u
     const bool known_rows = keyed && !scratch.keys.empty();
     const bool use_memory = known_rows && bounded;
     const IslandPlan plan = plan_island(*problem, method, known_rows, use_memory, scratch);
-    // x is written in place into pairsbx[2i+1]; A, b, lo, hi are only read.
-    Result r;
-    if (!answered_past_the_limit(*problem, plan, scratch, r)) {
-        const Problem q = scratch.view.of(*problem, plan.small, scratch.start.ordering);
-        r = solve(q, plan.options, Strided{problem->pairsbx + 1, 2}, scratch.start, scratch.workspace);
-    }
-
+    Result r = answer_of(*problem, plan, scratch);
     const dMLCPStatus status = to_ode_status(r);
     stats->pivots = r.pivoting.pivots;
     stats->tight = r.tight;
     stats->fallbacks = r.fallback == Fallback::None ? 0 : 1;
     stats->fallback = fallback_name(r);
-    keep_island(*problem, plan, known_rows, use_memory, status != dMLCPFailed, scratch, std::move(r));
+    keep_island(*problem, plan, known_rows, use_memory, status != dMLCPFailed, scratch, r);
+    scratch.workspace.recycle(std::move(r));  // the world's previous last result
     return status;
 }
 

@@ -102,7 +102,8 @@ void print_usage(FILE* out) {
                  "  --cfm         ODE CFM of joints and contacts (default 1e-10, ODE's)\n"
                  "  --compliance  the paper's compliance c; sets CFM = c / h (paper: 1e-6 .. 1e-10)\n"
                  "  --csv         one row per island per step\n"
-                 "  --capture     writes every island's MLCP (every K-th step) into DIR (created)\n"
+                 "  --capture     writes every island's MLCP (every K-th step) into DIR (created), with the\n"
+                 "                warm start it was solved from (ode-bpp-solve --warm replays it)\n"
                  "  --capture-failures  with --capture: only the islands, of every step, that the solver\n"
                  "                answered through a fallback or handed to ODE's Dantzig\n"
                  "  --cond-every  estimate cond(A) of the largest island every N steps (default 30; 0: never)\n"
@@ -210,6 +211,9 @@ struct Recorder {
     /// --capture-failures: the island as ODE handed it over, written only if its solve did not
     /// end dMLCPSolved (the before call cannot know; the after call no longer has A intact).
     bool capture_failures = false;
+    /// The island of the before call, written in the after call with the warm start the hook
+    /// solved it from (ode_bpp::last_island_start): every island of a captured step, or the
+    /// failures.
     std::optional<ode_bpp::MlcpFile> pending;
     long step = 0;
     double cfm = 0, erp = 0;
@@ -281,13 +285,12 @@ std::filesystem::path capture_path(const Recorder& rec, size_t island) {
     return std::filesystem::path(rec.capture_dir) / file;
 }
 
-/// Writes `file` (or, without one, the island p as ODE hands it over) and counts it.
-void capture_island(Recorder& rec, const dMLCP& p, size_t island, const ode_bpp::MlcpFile* file = nullptr) {
+/// Writes `file` (the island as ODE handed it over, with its metadata) and counts it.
+void capture_island(Recorder& rec, size_t island, const ode_bpp::MlcpFile& file) {
     namespace fs = std::filesystem;
     std::string error;
     const fs::path path = capture_path(rec, island);
-    const bool written = file != nullptr ? ode_bpp::write_mlcp(path.string(), *file, &error)
-                                         : ode_bpp::write_mlcp_from_ode(path.string(), p, capture_metadata(rec, island), &error);
+    const bool written = ode_bpp::write_mlcp(path.string(), file, &error);
     if (!written) {
         if (rec.capture_error.empty()) rec.capture_error = error;
         return;
@@ -304,19 +307,21 @@ void observe(const dMLCP* p, const dMLCPIslandStats* stats, void* data) {
     if (stats == nullptr) {
         rec.islands.emplace_back();
         copy_before(*p, rec.islands.back());
-        if (rec.capture_failures) {
+        rec.pending.reset();
+        if (rec.capture_failures || rec.capture_this_step) {
             std::string error;
             rec.pending = ode_bpp::capture_from_ode(*p, capture_metadata(rec, rec.islands.size() - 1), &error);
             if (!rec.pending && rec.capture_error.empty()) rec.capture_error = error;
-        } else if (rec.capture_this_step) {
-            capture_island(rec, *p, rec.islands.size() - 1);
         }
         return;
     }
-    if (rec.capture_failures && rec.pending && stats->status != dMLCPSolved) {
-        rec.pending->meta.set("status", stats->status == dMLCPFailed ? "failed" : "solved-by-fallback");
-        if (stats->fallback != nullptr) rec.pending->meta.set("fallback", stats->fallback);
-        capture_island(rec, *p, rec.islands.size() - 1, &*rec.pending);
+    if (rec.pending && (rec.capture_this_step || stats->status != dMLCPSolved)) {
+        if (stats->status != dMLCPSolved) {
+            rec.pending->meta.set("status", stats->status == dMLCPFailed ? "failed" : "solved-by-fallback");
+            if (stats->fallback != nullptr) rec.pending->meta.set("fallback", stats->fallback);
+        }
+        if (rec.solver != "dantzig") ode_bpp::set_start_metadata(ode_bpp::last_island_start(), rec.pending->meta);
+        capture_island(rec, rec.islands.size() - 1, *rec.pending);
     }
     // SceneWorld attaches no threading implementation, so ODE solves the islands one at a time:
     // the "after" call belongs to the latest "before"

@@ -33,6 +33,7 @@ struct Cli {
     std::optional<int> pgs_iterations;
     int repeat = 1;
     bool factor_error = false;
+    bool warm = false;  ///< start from the file's warm_start and ordering metadata
     std::string csv_path;  ///< empty: stdout
     std::vector<std::string> inputs;
     bool help = false;
@@ -67,6 +68,8 @@ std::string usage() {
            "  --pgs-iterations N    sweeps of pgs\n"
            "  --repeat R            solve R times, report the median time (default: 1)\n"
            "  --factor-error        compute the factor error of the final index set\n"
+           "  --warm                start each solve from the file's warm_start and ordering\n"
+           "                        metadata (as a capture inside ODE records them; cold where absent)\n"
            "  --csv OUT.csv         write the CSV there instead of stdout\n"
            "  --help                show this text\n"
            "Exit status: 0 every file read, 1 a file could not be read or the CSV not written,\n"
@@ -135,6 +138,8 @@ std::optional<Cli> parse_args(int argc, char** argv, std::string* error) {
             cli.help = true;
         } else if (arg == "--factor-error") {
             cli.factor_error = true;
+        } else if (arg == "--warm") {
+            cli.warm = true;
         } else if (arg.rfind("--", 0) == 0) {
             const std::size_t eq = arg.find('=');
             const std::string name = arg.substr(0, eq);
@@ -195,14 +200,20 @@ bool run(const Cli& cli, const std::vector<std::string>& files, std::ostream& cs
         if (files.size() >= kProgressFromFiles)
             std::cerr << "ode-bpp-solve: [" << k + 1 << "/" << files.size() << "] " << files[k] << "\n";
         const ode_bpp::ReadResult read = ode_bpp::read_mlcp(files[k]);
-        if (!read.ok) {
-            std::cerr << "ode-bpp-solve: " << read.error << "\n";
-            csv << ode_bpp::io::csv_line(ode_bpp::io::report_fields(ode_bpp::io::read_error_record(files[k], read.error)));
+        std::string error = read.error;
+        const std::optional<ode_bpp::Start> start =
+            read.ok ? (cli.warm ? ode_bpp::start_from_metadata(read.file.meta, read.file.n, &error) : ode_bpp::Start{})
+                    : std::nullopt;
+        if (!start) {
+            if (read.ok) error = files[k] + ": " + error;
+            std::cerr << "ode-bpp-solve: " << error << "\n";
+            csv << ode_bpp::io::csv_line(ode_bpp::io::report_fields(ode_bpp::io::read_error_record(files[k], error)));
             all_read = false;
             continue;
         }
         for (ode_bpp::Method method : cli.methods) {
-            const auto record = ode_bpp::io::solve_and_time(read.file, files[k], options_for(cli, method), cli.repeat);
+            const auto record =
+                ode_bpp::io::solve_and_time(read.file, files[k], options_for(cli, method), cli.repeat, *start);
             csv << ode_bpp::io::csv_line(ode_bpp::io::report_fields(record)) << std::flush;
         }
     }

@@ -29,7 +29,7 @@ inline constexpr std::uint32_t kMlcpFormatVersion = 1;
 
 /// Ordered key=value text attached to a problem. Keys are non-empty and use only
 /// [A-Za-z0-9_.-]; values contain neither '\n' nor '\0'; keys are unique.
-/// Conventional keys: scene, frame, island, cfm, erp, step_size, solver.
+/// Conventional keys: scene, frame, island, cfm, erp, step_size, solver, warm_start, ordering.
 struct ODE_BPP_API Metadata {
     std::vector<std::pair<std::string, std::string>> entries;  ///< (key, value), in file order
 
@@ -93,6 +93,22 @@ ODE_BPP_API bool write_mlcp(const std::string& path, const MlcpFile& file, std::
 /// copy_problem followed by write_mlcp.
 ODE_BPP_API bool write_mlcp(const std::string& path, const Problem& problem, const Metadata& meta,
                 const double* x_ref, std::string* error);
+/// The metadata keys that carry a warm start (docs/mlcp-format.md, "Metadata"): `warm_start`,
+/// one character per row (F free, L at lo, H at hi), and `ordering`, Start::ordering's entries in
+/// decimal, comma-separated. A capture writes them so that a solve of the file can start where
+/// the solve inside ODE started.
+inline constexpr const char* kWarmStartKey = "warm_start";
+inline constexpr const char* kOrderingKey = "ordering";
+
+/// Writes `start` into meta (each key only when its part is non-empty; an empty part removes
+/// nothing that is there).
+ODE_BPP_API void set_start_metadata(const Start& start, Metadata& meta);
+
+/// The Start a file's metadata names for its n rows: empty parts where a key is absent. Fails,
+/// with a message naming the key, on a value of another length than n, an unknown state
+/// character, or an ordering that is not a permutation of 0 .. n-1.
+ODE_BPP_API std::optional<Start> start_from_metadata(const Metadata& meta, int n, std::string* error);
+
 /// CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of size bytes: the file's checksum.
 ODE_BPP_API std::uint32_t crc32(const std::uint8_t* data, std::size_t size);
 

@@ -62,6 +62,13 @@ ODE_BPP_API WorldSettings world_settings(dWorldID world);
 /// residuals, pivots, tight count, fallback). A default-constructed Result if none.
 ODE_BPP_API Result last_island_result(dWorldID world);
 
+/// The warm start the hook solved the calling thread's latest island from: the index set it
+/// recalled (empty when it knew none of the island's rows) and the ordering it handed to the solve
+/// (the one remembered for the island's structure; empty when the solver chose afresh). ODE calls
+/// the observer's "after" call on the thread that solved the island, so capture reads it there
+/// (ode_bpp/io.h, set_start_metadata); it holds until that thread's next island.
+ODE_BPP_API Start last_island_start();
+
 /// The island's A as a dense m x m row-major array holding the lower triangle (diagonal included;
 /// the upper triangle zero), whichever form ODE handed over: read from the dense A, or assembled
 /// from J, J M^-1 and the CFM in the sparse form. O(m^2): for capture and diagnostics, never

@@ -85,7 +85,8 @@ std::string csv_line(const std::vector<std::string>& fields) {
     return line + "\n";
 }
 
-SolveRecord solve_and_time(const MlcpFile& problem, const std::string& file, const Options& options, int repeat) {
+SolveRecord solve_and_time(const MlcpFile& problem, const std::string& file, const Options& options, int repeat,
+                           const Start& start) {
     SolveRecord rec;
     rec.file = file;
     rec.n = problem.n;
@@ -97,10 +98,10 @@ SolveRecord solve_and_time(const MlcpFile& problem, const std::string& file, con
     std::vector<double> times;
     for (int run = 0; run < std::max(1, repeat); ++run) {
         std::fill(x.begin(), x.end(), 0.0);
-        const auto start = std::chrono::steady_clock::now();
-        rec.result = solve(view, options, x.data());
+        const auto began = std::chrono::steady_clock::now();
+        rec.result = solve(view, options, x.data(), start);
         const auto stop = std::chrono::steady_clock::now();
-        times.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
+        times.push_back(std::chrono::duration<double, std::micro>(stop - began).count());
     }
     rec.time_us = median(times);
     return rec;

@@ -33,9 +33,10 @@ std::string csv_escape(std::string_view field);
 /// Escaped fields joined by commas, terminated by "\n".
 std::string csv_line(const std::vector<std::string>& fields);
 
-/// Solves the file's problem repeat >= 1 times with the given options (x starts from zero
-/// each time) and records the last Result and the median time.
-SolveRecord solve_and_time(const MlcpFile& problem, const std::string& file, const Options& options, int repeat);
+/// Solves the file's problem repeat >= 1 times with the given options from `start` (x starts
+/// from zero each time) and records the last Result and the median time.
+SolveRecord solve_and_time(const MlcpFile& problem, const std::string& file, const Options& options, int repeat,
+                           const Start& start = {});
 
 /// A row for a file that could not be read; error is the reader's message.
 SolveRecord read_error_record(const std::string& file, const std::string& error);

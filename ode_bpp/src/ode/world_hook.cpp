@@ -280,6 +280,8 @@ Result last_island_result(dWorldID world) {
     return it != hook().worlds.end() ? it->second.last : Result{};
 }
 
+Start last_island_start() { return thread_scratch().start; }
+
 void forget_world(dWorldID world) {
     std::lock_guard<std::mutex> g(hook().lock);
     hook().worlds.erase(world);

@@ -166,10 +166,10 @@ TEST(OrderingCache, EqualIslandsWithDifferentIdentitiesKeepTheirOwnOrderings) {
     OrderingCache::signature(problem, first_a, a);
     OrderingCache::signature(problem, first_b, b);
     ASSERT_NE(a, b);
-    cache.store(a, {0, 1, 2, 3, 4, 5}, 1);
-    cache.store(b, {5, 4, 3, 2, 1, 0}, 1);
+    cache.store(a, {0, 1, 2, 3, 4, 5}, true, 1);
+    cache.store(b, {5, 4, 3, 2, 1, 0}, true, 1);
     ASSERT_NE(cache.find(a, 2), nullptr);
-    EXPECT_EQ(*cache.find(a, 2), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+    EXPECT_EQ(cache.find(a, 2)->ordering, (std::vector<int>{0, 1, 2, 3, 4, 5}));
     // a change of structure (another joint, other bodies) is another island
     joints[1].body[1] = -1;
     OrderingCache::Signature changed;
@@ -195,13 +195,26 @@ TEST(RowStateMemory, StaysBoundedWhileContactsComeAndGo) {
     EXPECT_LE(largest, (RowStateMemory::kKeepSteps + 1) * kRowsPerStep);
 }
 
+// The hook's first look at a new structure is stored unsettled (ordered without pricing), its
+// choice when the structure returns settled; find says which, and a store replaces both.
+TEST(OrderingCache, KeepsWhetherAnOrderingIsSettled) {
+    OrderingCache cache;
+    const OrderingCache::Signature island{1, 7, 0, 3};
+    cache.store(island, {2, 1, 0}, false, 1);
+    ASSERT_NE(cache.find(island, 2), nullptr);
+    EXPECT_FALSE(cache.find(island, 2)->settled);
+    cache.store(island, {0, 2, 1}, true, 2);
+    EXPECT_TRUE(cache.find(island, 3)->settled);
+    EXPECT_EQ(cache.find(island, 3)->ordering, (std::vector<int>{0, 2, 1}));
+}
+
 // Islands whose structure changes every step fill the cache, which then starts again: it never
 // holds more than kMaxIslands orderings.
 TEST(OrderingCache, StaysBoundedWhileIslandsChange) {
     OrderingCache cache;
     std::size_t largest = 0;
     for (std::intptr_t k = 0; k < 10 * static_cast<std::intptr_t>(OrderingCache::kMaxIslands); ++k) {
-        cache.store(OrderingCache::Signature{k, 7, 0, 3}, {0, 1, 2}, 1);
+        cache.store(OrderingCache::Signature{k, 7, 0, 3}, {0, 1, 2}, true, 1);
         largest = std::max(largest, cache.size());
     }
     EXPECT_EQ(largest, OrderingCache::kMaxIslands);
@@ -215,9 +228,9 @@ TEST(OrderingCache, ForgetsStructuresUnseenForKeepSteps) {
     const OrderingCache::Signature steady{1, 7, 0, 3};
     std::uint64_t step = 1;
     for (std::intptr_t k = 0; k < 100; ++k, step += 10) {
-        if (cache.find(steady, step) == nullptr) cache.store(steady, {2, 1, 0}, step);
+        if (cache.find(steady, step) == nullptr) cache.store(steady, {2, 1, 0}, true, step);
         const OrderingCache::Signature passing{1000 + k, 7, 0, 3};
-        if (cache.find(passing, step) == nullptr) cache.store(passing, {0, 1, 2}, step);
+        if (cache.find(passing, step) == nullptr) cache.store(passing, {0, 1, 2}, true, step);
         EXPECT_LE(cache.size(), 1 + OrderingCache::kKeepSteps / 10 + 1) << "step " << step;
     }
     EXPECT_NE(cache.find(steady, step), nullptr);  // seen every 10 steps: kept

@@ -167,6 +167,37 @@ TEST(PivotingOrdering, ASmallIslandMovesItsFrictionRowsLastWhereThatPricesLower)
     EXPECT_EQ(caller_kept, 2);
 }
 
+/// Without pricing (Tuning::price_tight_last_orderings off: the hook's first look at a new
+/// structure) an island that an ordering pays for takes reverse Cuthill-McKee whatever its warm
+/// start, where the priced choice moves the friction rows last; an island too small for an
+/// ordering takes the caller's order priced as before (ordering_cannot_pay says which).
+TEST(PivotingOrdering, UnpricedChoiceIsReverseCuthillMcKeeWhereAnOrderingPays) {
+    int reordered = 0, small = 0;
+    // long chains with two contacts whose normals start tight (the priced choice moves them last)
+    // and short ones with many contacts (too small for an ordering)
+    for (const auto& [links, contacts] : {std::pair{40, 2}, std::pair{60, 2}, std::pair{4, 12}, std::pair{3, 20}}) {
+        const auto owned = problems::chain_mlcp(links, contacts);
+        const Problem p = owned.view();
+        const linalg::SymmetricRows A(p, {});
+        std::vector<RowState> warm(p.n, RowState::Free);
+        for (int i = p.nub, k = 0; i < p.n; ++i)
+            if (owned.findex[i] < 0 && k++ % 2 == 0) warm[i] = RowState::AtLo;
+        for (const auto first : {FirstSolve::AsWarmStart, FirstSolve::FrictionRowsTight}) {
+            const std::vector<int> priced = choose_ordering(Method::Bpp, p, A, warm, first, true);
+            const std::vector<int> unpriced = choose_ordering(Method::Bpp, p, A, warm, first, false);
+            if (ordering_cannot_pay(A)) {
+                EXPECT_EQ(unpriced, priced) << links << " links: the caller's order is priced either way";
+                small += 1;
+                continue;
+            }
+            EXPECT_EQ(unpriced, choose_ordering(Method::Bpp, p, A, {}, FirstSolve::AsWarmStart)) << links << " links";
+            reordered += unpriced != priced;
+        }
+    }
+    EXPECT_EQ(reordered, 4) << "pricing moves the tight normals of every long chain";
+    EXPECT_EQ(small, 4);
+}
+
 TEST(PivotingOrdering, FirstSolvePriceAddsTheFrictionRowsStepOnly) {
     const auto owned = problems::chain_mlcp(40, 4);
     const Problem p = owned.view();

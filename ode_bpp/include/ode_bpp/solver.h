@@ -198,6 +198,14 @@ struct Tuning {
     /// solve holds them at 0, so it refactors a short tail), priced by the cost model against the
     /// envelope they may widen (ordering/ordering_choice.h). False: Cuthill-McKee or its reverse only.
     bool order_tight_last = true;
+    /// Bpp, with order_tight_last, on islands large enough for an ordering: price the
+    /// Cuthill-McKee orderings with the tight rows last against reverse Cuthill-McKee. False:
+    /// reverse Cuthill-McKee, unpriced (the caller's order with the friction rows last, on islands
+    /// too small for an ordering, is priced either way). The ODE hook turns it off for an island
+    /// structure it has not met before, and prices the structure when it returns: most of those
+    /// met once never do, and on them the pricing cost about what the choice saved
+    /// (docs/tuning.md).
+    bool price_tight_last_orderings = true;
 };
 
 /// Settings of one solve.

@@ -18,18 +18,20 @@ void OrderingCache::signature(const dMLCP& p, const RowKey& first_row, Signature
     }
 }
 
-const std::vector<int>* OrderingCache::find(const Signature& structure, std::uint64_t step) {
+const OrderingCache::Remembered* OrderingCache::find(const Signature& structure, std::uint64_t step) {
     if (step != swept_) forget_older_than(step);
     const auto it = orderings_.find(structure);
     if (it == orderings_.end()) return nullptr;
     it->second.seen = step;
-    return &it->second.ordering;
+    return &it->second;
 }
 
-void OrderingCache::store(const Signature& structure, const std::vector<int>& ordering, std::uint64_t step) {
+void OrderingCache::store(const Signature& structure, const std::vector<int>& ordering, bool settled,
+                          std::uint64_t step) {
     if (orderings_.size() >= kMaxIslands && orderings_.count(structure) == 0) orderings_.clear();
-    Entry& entry = orderings_[structure];
+    Remembered& entry = orderings_[structure];
     entry.ordering = ordering;
+    entry.settled = settled;
     entry.seen = step;
 }
 

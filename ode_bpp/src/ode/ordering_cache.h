@@ -21,16 +21,25 @@ namespace ode_bpp {
 class OrderingCache {
 public:
     using Signature = std::vector<std::intptr_t>;
+    /// What is kept of a signature.
+    struct Remembered {
+        std::vector<int> ordering;
+        /// The ordering came from the choice the world's settings ask for; false: from the
+        /// unpriced first look at a new structure (Tuning::price_tight_last_orderings), which the
+        /// hook replaces when the structure returns. Only settled orderings are passed back.
+        bool settled = true;
+        std::uint64_t seen = 0;  ///< the latest step that found or stored it
+    };
     /// structure: output, the island's signature: the identity of its first row, m, then each
     /// joint's first row and bodies.
     static void signature(const dMLCP& problem, const RowKey& first_row, Signature& structure);
-    /// The ordering stored for this signature, or null; marks it seen at `step` (the world's step
+    /// What is stored for this signature, or null; marks it seen at `step` (the world's step
     /// number). The first call of a later step first forgets every ordering not seen for more
     /// than kKeepSteps steps.
-    const std::vector<int>* find(const Signature& structure, std::uint64_t step);
+    const Remembered* find(const Signature& structure, std::uint64_t step);
     /// Stores (or replaces) the ordering of a signature, seen at `step`. Forgets everything once
     /// kMaxIslands signatures are held.
-    void store(const Signature& structure, const std::vector<int>& ordering, std::uint64_t step);
+    void store(const Signature& structure, const std::vector<int>& ordering, bool settled, std::uint64_t step);
     /// Signatures held: at most kMaxIslands, and only those seen in the last kKeepSteps + 1 steps.
     std::size_t size() const { return orderings_.size(); }
     static constexpr std::size_t kMaxIslands = 256;
@@ -41,13 +50,9 @@ public:
     static constexpr std::uint64_t kKeepSteps = 64;
 
 private:
-    struct Entry {
-        std::vector<int> ordering;
-        std::uint64_t seen = 0;
-    };
     void forget_older_than(std::uint64_t step);
 
-    std::map<Signature, Entry> orderings_;
+    std::map<Signature, Remembered> orderings_;
     std::uint64_t swept_ = 0;  ///< the step whose first find() last swept
 };
 

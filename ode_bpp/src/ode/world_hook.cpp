@@ -36,6 +36,7 @@
 #include "ode/ordering_cache.h"
 #include "ode/oversize.h"
 #include "ode/row_identity.h"
+#include "ordering/ordering_choice.h"
 #include "pivoting/bpp_driver.h"
 #include "pivoting/small_island.h"
 
@@ -134,6 +135,7 @@ struct IslandScratch {
     Workspace workspace;
     std::vector<std::int64_t> rows_on_body;  ///< ode::oversize's scratch
     ode::JacobianPgsBuffers jacobian_pgs;
+    linalg::SymmetricRows dense_rows;  ///< a dense-form island's A, where ordering_priced_either_way reads it
 };
 
 /// The hook's memory on the calling thread: ODE may step islands on several threads at once,
@@ -150,6 +152,7 @@ struct IslandPlan {
     bool recalled = false;  ///< the warm-start memory was asked (scratch.slots says where)
     bool warm = false;      ///< and it knew the island: scratch.start.states holds its index set
     bool ordering_remembered = false;  ///< scratch.start.ordering came from the ordering cache
+    bool settled_ordering = true;  ///< the solve orders as the world's settings ask (OrderingCache::Remembered)
 };
 
 /// The world's options for `method`, the island's warm start (by row identity, when some row can
@@ -169,10 +172,15 @@ IslandPlan plan_island(const dMLCP& problem, Method method, bool known_rows, boo
     }
     if (known_rows && !plan.small) {
         OrderingCache::signature(problem, scratch.keys.front(), scratch.structure);
-        if (const std::vector<int>* known = ws.orderings.find(scratch.structure, problem.step)) {
-            start.ordering = *known;
+        const OrderingCache::Remembered* known = ws.orderings.find(scratch.structure, problem.step);
+        if (known != nullptr && known->settled) {
+            start.ordering = known->ordering;
             plan.ordering_remembered = true;
         }
+        // a structure met for the first time is ordered unpriced, and priced when it returns
+        bool& prices = plan.options.tuning.price_tight_last_orderings;
+        plan.settled_ordering = known != nullptr || !prices;
+        prices = prices && known != nullptr;
     }
     if (!plan.warm) start.states.clear();
     return plan;
@@ -188,17 +196,27 @@ void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
         ws.memory.remember(scratch.keys, problem.step, r.states, plan.recalled ? &scratch.slots : nullptr);
     if (known_rows && !plan.small && !r.ordering.empty() &&
         (!plan.ordering_remembered || r.ordering != scratch.start.ordering))
-        ws.orderings.store(scratch.structure, r.ordering, problem.step);
+        ws.orderings.store(scratch.structure, r.ordering, plan.settled_ordering, problem.step);
     std::vector<RowState> previous = std::move(ws.last.states);
     ws.last = std::move(r);  // no copy of its vectors per island
     r.states = std::move(previous);
+}
+
+/// True when the solver orders q alike with the pricing of Tuning::price_tight_last_orderings
+/// and without: an island too small for an ordering keeps the caller's order, priced either way
+/// (ordering::ordering_cannot_pay). A dense-form island's A is read into rows for the test, as the
+/// solver reads it, so that both forms keep the same orderings.
+bool ordering_priced_either_way(const Problem& q, linalg::SymmetricRows& rows) {
+    if (q.sparse != nullptr) return ordering::ordering_cannot_pay(*q.sparse);
+    rows.assign(q, {});
+    return ordering::ordering_cannot_pay(rows);
 }
 
 /// The island's answer, x written in place into pairsbx[2i+1] (A, b, lo, hi only read). An
 /// island whose A or factor would pass the limit (ode::oversize, counted in
 /// scratch.start.ordering, the remembered order, or else in the one it sets there for the solve)
 /// is answered without forming A (ode/jacobian_pgs.h); any other by solve().
-Result answer_of(const dMLCP& island, const IslandPlan& plan, IslandScratch& scratch) {
+Result answer_of(const dMLCP& island, IslandPlan& plan, IslandScratch& scratch) {
     const Strided x{island.pairsbx + 1, 2};
     if (!plan.small && pivoting::factor_may_be_too_large(island.m, plan.options)) {
         const Problem rows = scratch.view.rows_of(island);
@@ -207,6 +225,7 @@ Result answer_of(const dMLCP& island, const IslandPlan& plan, IslandScratch& scr
         if (oversize) return ode::solve_by_jacobian_pgs(island, rows, plan.options, oversize, x, scratch.jacobian_pgs);
     }
     const Problem q = scratch.view.of(island, plan.small, scratch.start.ordering);
+    if (!plan.settled_ordering && ordering_priced_either_way(q, scratch.dense_rows)) plan.settled_ordering = true;
     return solve(q, plan.options, x, scratch.start, scratch.workspace);
 }
 
@@ -218,7 +237,7 @@ dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* u
     if (keyed) row_keys(*problem, scratch.keys, scratch.contacts);
     const bool known_rows = keyed && !scratch.keys.empty();
     const bool use_memory = known_rows && bounded;
-    const IslandPlan plan = plan_island(*problem, method, known_rows, use_memory, scratch);
+    IslandPlan plan = plan_island(*problem, method, known_rows, use_memory, scratch);
     Result r = answer_of(*problem, plan, scratch);
     const dMLCPStatus status = to_ode_status(r);
     stats->pivots = r.pivoting.pivots;

@@ -49,15 +49,6 @@ std::vector<char> warm_tight(const std::vector<RowState>& warm_start) {
 /// instructions for 6 vertices and 15 edges), in units comparable to CostModel's multiply-adds.
 constexpr double kOrderingCostPerEntry = 300;
 
-/// True when factoring in the caller's own order, kStepsPerWarmSolve times, costs less than
-/// computing an ordering at all: small islands (every one of up to ~20 rows), where the orderings
-/// made bpp slower than a dense Cholesky of the same frame.
-bool ordering_cannot_pay(const linalg::SymmetricRows& A) {
-    const double identity = linalg::full_refactor_cost(linalg::SkylineShape::from_row_profile(A.row_profile()));
-    const double nnz = A.n() > 0 ? A.row_end(A.n() - 1) : 0;
-    return kStepsPerWarmSolve * identity <= kOrderingCostPerEntry * (A.n() + nnz);
-}
-
 /// The cheaper of deleting the rows flagged in `tight` (original space) from L0 and refactoring
 /// from the first of them, in the shape of perm; 0 when none is flagged.
 double step_price(const linalg::CostModel& cost, const linalg::SkylineShape& shape, const std::vector<int>& perm,
@@ -125,6 +116,14 @@ std::vector<int> caller_order(const Problem& problem, const linalg::SymmetricRow
 
 }  // namespace
 
+// small islands (every one of up to ~20 rows) and dense ones, where the orderings made bpp slower
+// than a factorization in the caller's order
+bool ordering_cannot_pay(const linalg::SymmetricRows& A) {
+    const double identity = linalg::full_refactor_cost(linalg::SkylineShape::from_row_profile(A.row_profile()));
+    const double nnz = A.n() > 0 ? A.row_end(A.n() - 1) : 0;
+    return kStepsPerWarmSolve * identity <= kOrderingCostPerEntry * (A.n() + nnz);
+}
+
 double warm_solve_price(const linalg::SymmetricRows& A, const std::vector<int>& perm, const std::vector<char>& tight,
                         const std::vector<char>& first_tight) {
     return price_in_shape(linalg::SkylineShape::from_row_profile(A.row_profile_under(perm)), perm, tight, first_tight);
@@ -154,7 +153,7 @@ std::vector<int> block_ordering(Method method, const Problem& problem) {
 }
 
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
-                                 const std::vector<RowState>& warm_start, FirstSolve first) {
+                                 const std::vector<RowState>& warm_start, FirstSolve first, bool price_reorderings) {
     if (method == Method::BppSky) return order_pair(problem, A).forward;
     if (method != Method::Bpp) return identity(problem.n);
     if (ordering_cannot_pay(A)) return caller_order(problem, A, warm_start, first);
@@ -165,6 +164,7 @@ std::vector<int> choose_ordering(Method method, const Problem& problem, const li
     // numbered by blocks too: on the 6,200 islands of the eight corpora never larger, equal on a
     // fifth), so Cuthill-McKee's own profile is not computed to compare
     std::vector<int> best = rcm;
+    if (!price_reorderings) return best;
     const std::vector<char> tight = warm_tight(warm_start);
     const std::vector<char> first_tight = first_solve_tight(problem, tight, first);
     if (tight.empty() && first_tight.empty()) return best;

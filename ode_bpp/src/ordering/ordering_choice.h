@@ -27,10 +27,18 @@ enum class FirstSolve {
 ///    or refactoring them touches the fewest columns), and the lowest warm_solve_price wins
 ///    (moving them can widen the envelope more than it saves). A candidate whose factorization
 ///    alone costs at least the best price (flagged_rows_factor_bound, then
-///    linalg::full_refactor_cost) is rejected unpriced: the choice is the same.
+///    linalg::full_refactor_cost) is rejected unpriced: the choice is the same. Without
+///    `price_reorderings` (Tuning::price_tight_last_orderings) reverse Cuthill-McKee stands
+///    unpriced; the caller's order is priced either way.
 /// A: the problem's matrix in original order (for envelope sizes).
 std::vector<int> choose_ordering(Method method, const Problem& problem, const linalg::SymmetricRows& A,
-                                 const std::vector<RowState>& warm_start, FirstSolve first = FirstSolve::AsWarmStart);
+                                 const std::vector<RowState>& warm_start, FirstSolve first = FirstSolve::AsWarmStart,
+                                 bool price_reorderings = true);
+
+/// True when factoring in the caller's own order, kStepsPerWarmSolve times, costs less than
+/// computing an ordering at all (kOrderingCostPerEntry per row and entry of A): Bpp then keeps
+/// that order, or moves the friction rows last (priced either way). A: original order.
+bool ordering_cannot_pay(const linalg::SymmetricRows& A);
 
 /// choose_ordering's first candidate from the problem's row blocks alone, without A: for BppSky
 /// Cuthill-McKee on the block graph (its whole choice), for Bpp the reverse (the order the

@@ -50,7 +50,8 @@ std::vector<int> chosen_ordering(const Problem& p, const linalg::SymmetricRows& 
     const bool hint = o.tuning.order_tight_last;
     const auto first = hint && o.friction == FrictionMode::Frozen ? ordering::FirstSolve::FrictionRowsTight
                                                                    : ordering::FirstSolve::AsWarmStart;
-    return ordering::choose_ordering(strategy, p, A, hint ? start.states : kNoHint, first);
+    return ordering::choose_ordering(strategy, p, A, hint ? start.states : kNoHint, first,
+                                     o.tuning.price_tight_last_orderings);
 }
 
 /// True when A is stored in the permutation perm already: its order() (a permutation), or the

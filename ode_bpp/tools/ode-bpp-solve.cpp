@@ -33,7 +33,8 @@ struct Cli {
     std::optional<int> pgs_iterations;
     int repeat = 1;
     bool factor_error = false;
-    bool warm = false;  ///< start from the file's warm_start and ordering metadata
+    bool warm = false;         ///< start from the file's warm_start and ordering metadata
+    bool warm_states = false;  ///< the warm_start metadata only; the ordering chosen afresh
     std::string csv_path;  ///< empty: stdout
     std::vector<std::string> inputs;
     bool help = false;
@@ -70,6 +71,8 @@ std::string usage() {
            "  --factor-error        compute the factor error of the final index set\n"
            "  --warm                start each solve from the file's warm_start and ordering\n"
            "                        metadata (as a capture inside ODE records them; cold where absent)\n"
+           "  --warm-states         the same with the warm_start metadata only: each solve chooses\n"
+           "                        its ordering afresh (to judge an ordering policy)\n"
            "  --csv OUT.csv         write the CSV there instead of stdout\n"
            "  --help                show this text\n"
            "Exit status: 0 every file read, 1 a file could not be read or the CSV not written,\n"
@@ -140,6 +143,8 @@ std::optional<Cli> parse_args(int argc, char** argv, std::string* error) {
             cli.factor_error = true;
         } else if (arg == "--warm") {
             cli.warm = true;
+        } else if (arg == "--warm-states") {
+            cli.warm = cli.warm_states = true;
         } else if (arg.rfind("--", 0) == 0) {
             const std::size_t eq = arg.find('=');
             const std::string name = arg.substr(0, eq);
@@ -201,9 +206,10 @@ bool run(const Cli& cli, const std::vector<std::string>& files, std::ostream& cs
             std::cerr << "ode-bpp-solve: [" << k + 1 << "/" << files.size() << "] " << files[k] << "\n";
         const ode_bpp::ReadResult read = ode_bpp::read_mlcp(files[k]);
         std::string error = read.error;
-        const std::optional<ode_bpp::Start> start =
+        std::optional<ode_bpp::Start> start =
             read.ok ? (cli.warm ? ode_bpp::start_from_metadata(read.file.meta, read.file.n, &error) : ode_bpp::Start{})
                     : std::nullopt;
+        if (start && cli.warm_states) start->ordering.clear();
         if (!start) {
             if (read.ok) error = files[k] + ": " + error;
             std::cerr << "ode-bpp-solve: " << error << "\n";

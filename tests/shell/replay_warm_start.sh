@@ -4,7 +4,8 @@
 # docs/mlcp-format.md), and ode-bpp-solve --warm starts from it. On the winch, whose chain-drum
 # contacts keep their index sets from step to step, every captured island then takes exactly the
 # pivot steps it took inside ODE (the demo's --csv), while cold solves of the same files take
-# other counts. A file whose warm start does not fit its rows is an error that names the key.
+# other counts; --warm-states takes the index set alone (the ordering chosen afresh). A file whose
+# warm start does not fit its rows is an error that names the key.
 set -euo pipefail
 source "$(dirname "$0")/../launcher/common.bash"
 demo=$ODE_BPP_BINARY_DIR/demos/ode-bpp-demo
@@ -20,6 +21,8 @@ capture warm "$solve" --methods bpp --warm --csv "$WORK/warm.csv" "$WORK/corpus"
 (( STATUS == 0 )) || { show warm; fail "ode-bpp-solve --warm: status $STATUS"; }
 capture cold "$solve" --methods bpp --csv "$WORK/cold.csv" "$WORK/corpus"
 (( STATUS == 0 )) || { show cold; fail "ode-bpp-solve (cold): status $STATUS"; }
+capture states "$solve" --methods bpp --warm-states --csv "$WORK/states.csv" "$WORK/corpus"
+(( STATUS == 0 )) || { show states; fail "ode-bpp-solve --warm-states: status $STATUS"; }
 
 # pivots per captured island: inside ODE (step, island) against the replays (file name)
 python3 - "$WORK" <<'EOF' || fail "the warm replay does not reproduce the solves inside ODE"
@@ -32,7 +35,7 @@ def replayed(name):
         m = re.search(r'-s(\d+)-i(\d+)\.mlcp$', r['file'])
         out[(int(m.group(1)), int(m.group(2)))] = int(r['pivots'])
     return out
-warm, cold = replayed('warm'), replayed('cold')
+warm, cold, states = replayed('warm'), replayed('cold'), replayed('states')
 if not warm:
     sys.exit('no file replayed')
 wrong = [(k, warm[k], inside.get(k)) for k in sorted(warm) if warm[k] != inside.get(k)]
@@ -40,6 +43,14 @@ if wrong:
     sys.exit(f'{len(wrong)} of {len(warm)} islands: (step, island), pivots replayed, inside ODE: {wrong[:5]}')
 if all(cold[k] == warm[k] for k in warm):
     sys.exit('every cold solve took the warm one\'s pivots: the corpus cannot tell a warm start from none')
+# --warm-states drops the recorded ordering only: where none was recorded it is --warm
+import glob, os
+unordered = [k for k in warm if not any(b'ordering=' in open(f, 'rb').read()
+                                        for f in glob.glob(f'{work}/corpus/*-s{k[0]:06d}-i{k[1]:02d}.mlcp'))]
+if not unordered:
+    sys.exit('no captured island without a recorded ordering')
+if any(states[k] != warm[k] for k in unordered):
+    sys.exit('--warm-states does not start from the recorded index set')
 print(f'{len(warm)} islands replayed with the pivots taken inside ODE')
 EOF
 

@@ -197,6 +197,15 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs, b
     return files;
 }
 
+/// The Start each solve of `file` begins from: cold, or its metadata's (--warm; --warm-states
+/// without the ordering); nullopt, with the reason in *error, when that does not fit the file.
+std::optional<ode_bpp::Start> start_for(const Cli& cli, const ode_bpp::MlcpFile& file, std::string* error) {
+    if (!cli.warm) return ode_bpp::Start{};
+    std::optional<ode_bpp::Start> start = ode_bpp::start_from_metadata(file.meta, file.n, error);
+    if (start && cli.warm_states) start->ordering.clear();
+    return start;
+}
+
 // Reads and solves every file; returns false if some file could not be read.
 bool run(const Cli& cli, const std::vector<std::string>& files, std::ostream& csv) {
     bool all_read = true;
@@ -206,12 +215,9 @@ bool run(const Cli& cli, const std::vector<std::string>& files, std::ostream& cs
             std::cerr << "ode-bpp-solve: [" << k + 1 << "/" << files.size() << "] " << files[k] << "\n";
         const ode_bpp::ReadResult read = ode_bpp::read_mlcp(files[k]);
         std::string error = read.error;
-        std::optional<ode_bpp::Start> start =
-            read.ok ? (cli.warm ? ode_bpp::start_from_metadata(read.file.meta, read.file.n, &error) : ode_bpp::Start{})
-                    : std::nullopt;
-        if (start && cli.warm_states) start->ordering.clear();
+        std::optional<ode_bpp::Start> start;
+        if (read.ok && !(start = start_for(cli, read.file, &error))) error = files[k] + ": " + error;
         if (!start) {
-            if (read.ok) error = files[k] + ": " + error;
             std::cerr << "ode-bpp-solve: " << error << "\n";
             csv << ode_bpp::io::csv_line(ode_bpp::io::report_fields(ode_bpp::io::read_error_record(files[k], error)));
             all_read = false;

@@ -120,7 +120,8 @@ TEST(PivotingActiveSet, TakesAColdSolvesMovedBoundsAfterItsOwnPlainSteps) {
     const Problem p = owned.view();
     Options o;
     o.dantzig_fallback = false;
-    o.tuning.rescue_after_moved_bounds_cold = o.tuning.rescue_after;
+    // block steps alone finish this chain's solves within 8 plain steps each
+    o.tuning.rescue_after = o.tuning.rescue_after_moved_bounds_cold = 8;
     o.tuning.rescue_after_moved_bounds = 1;  // a warm start's: not this solve's
     std::vector<double> reference(static_cast<std::size_t>(p.n)), x(static_cast<std::size_t>(p.n));
     const Result block = solve(p, o, reference.data());
@@ -187,6 +188,75 @@ TEST(PivotingActiveSet, ItsAnswerIsNotSolvedAgainByAPlainStep) {
         EXPECT_EQ(r.pivoting.downdate_steps + r.pivoting.refactor_steps, 2) << name;
         EXPECT_LE(r.residuals.scaled_fixed_bound, certification_level(Options{}.tolerance)) << name;
     }
+}
+
+// A plain step that leaves more than Tuning::hand_over_above rows infeasible hands the solve to
+// the active set at once, where block steps alone would go on; both reach the answer, the only
+// one of this SPD problem.
+TEST(PivotingActiveSet, HandsOverAfterAPlainStepThatLeavesSeveralRowsInfeasible) {
+    const auto owned = problems::random_boxed_mlcp(60, 10, 0, 1e3, 7);
+    const Problem p = owned.view();
+    Options o;
+    o.dantzig_fallback = false;
+    o.tuning.hand_over_above = 0;
+    std::vector<double> reference(static_cast<std::size_t>(p.n)), x(static_cast<std::size_t>(p.n));
+    ASSERT_EQ(solve(p, o, reference.data()).status, Status::Converged);
+    Start wrong;  // every bounded row at its upper bound: the first step leaves many infeasible
+    wrong.states.assign(static_cast<std::size_t>(p.n), RowState::AtHi);
+    std::fill(wrong.states.begin(), wrong.states.begin() + p.nub, RowState::Free);
+    for (const int hand_over_above : {0, 1}) {
+        o.tuning.hand_over_above = hand_over_above;
+        const Result r = solve(p, o, x.data(), wrong);
+        ASSERT_EQ(r.status, Status::Converged) << r.message;
+        EXPECT_LT(problems::max_abs_diff(x, reference), 1e-8 * (1 + problems::inf_norm(reference)));
+        const int plain_steps = r.pivoting.pivots - r.pivoting.update_steps;
+        if (hand_over_above == 0) {
+            EXPECT_GT(plain_steps, 1);
+            EXPECT_EQ(r.pivoting.update_steps, 0) << "block steps alone finish";
+        } else {
+            EXPECT_EQ(plain_steps, 1) << "one plain step before the active set";
+            EXPECT_GT(r.pivoting.update_steps, 0) << "the active set did not take over";
+        }
+    }
+}
+
+// Where the first plain step leaves exactly hand_over_above rows infeasible, block steps go on
+// (one infeasible row: the next block step is its single pivot); one more such row hands over.
+// Box rows, weakly coupled: x_i = b_i / 2 roughly, so the even rows end at their upper bound and
+// flipping one of them to free leaves that row alone infeasible.
+TEST(PivotingActiveSet, ASingleInfeasibleRowIsPivotedByTheNextBlockStep) {
+    auto owned = problems::OwnedProblem::zeros("weakly coupled box", 40);
+    for (int i = 0; i < owned.n; ++i) {
+        owned.a(i, i) = 2;
+        if (i > 0) owned.a(i, i - 1) = owned.a(i - 1, i) = 0.01;
+        owned.b[static_cast<std::size_t>(i)] = i % 2 == 0 ? 3.0 : 0.5;
+        owned.lo[static_cast<std::size_t>(i)] = -1;
+        owned.hi[static_cast<std::size_t>(i)] = 1;
+    }
+    const Problem p = owned.view();
+    Options o;
+    o.dantzig_fallback = false;
+    std::vector<double> reference(static_cast<std::size_t>(p.n)), x(static_cast<std::size_t>(p.n));
+    const Result cold = solve(p, o, reference.data());
+    ASSERT_EQ(cold.status, Status::Converged) << cold.message;
+    ASSERT_EQ(cold.states[0], RowState::AtHi);
+    const auto with_even_rows_freed = [&](int rows) {
+        Start start{cold.states, {}};
+        for (int k = 0; k < rows; ++k) start.states[static_cast<std::size_t>(2 * k)] = RowState::Free;
+        const Result r = solve(p, o, x.data(), start);
+        EXPECT_EQ(r.status, Status::Converged) << r.message;
+        EXPECT_LT(problems::max_abs_diff(x, reference), 1e-12);
+        return r;
+    };
+    o.tuning.hand_over_above = 1;
+    const Result one = with_even_rows_freed(1);
+    EXPECT_EQ(one.pivoting.pivots, 2);
+    EXPECT_EQ(one.pivoting.update_steps, 0) << "one infeasible row went to the active set";
+    const Result two = with_even_rows_freed(2);
+    EXPECT_EQ(two.pivoting.pivots - two.pivoting.update_steps, 1);
+    EXPECT_GT(two.pivoting.update_steps, 0) << "two infeasible rows stayed with block steps";
+    o.tuning.hand_over_above = 2;
+    EXPECT_EQ(with_even_rows_freed(2).pivoting.update_steps, 0) << "the threshold is not hand_over_above";
 }
 
 namespace direct {

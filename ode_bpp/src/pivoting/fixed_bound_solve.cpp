@@ -30,7 +30,8 @@ FixedOutcome FixedBoundSolver::solve(std::vector<RowState>& states, std::vector<
     }
 }
 
-/// The plain loop gets plain_steps() steps; if it has not converged by then, the
+/// The plain loop gets plain_steps() steps, fewer where a step leaves more than
+/// Tuning::hand_over_above rows infeasible; if it has not converged by then, the
 /// active-set method on an incremental factor (active_set.h) goes on from its least infeasible
 /// iterate, with a budget of its own; where it does not finish, the rescue starts afresh
 /// from the warm start with the rest of the budget, and should it give up, the plain loop
@@ -40,10 +41,13 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
     const auto left = [&] { return budget - (counters_.pivots - first); };
     const int plain = plain_steps();
     const bool rescue_allowed = plain > 0;
-    LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, settings(rescue_allowed ? std::min(budget, plain) : budget),
-                                             states, x, counters_, buffers_.loop);
+    const bool active_set_next = rescue_allowed && options_.tuning.active_set && active_set_applies(lcp_);
+    PivotSettings plain_settings = settings(rescue_allowed ? std::min(budget, plain) : budget);
+    if (active_set_next && start_bounds_ != StartBounds::Moved)
+        plain_settings.hand_over_above = std::max(0, options_.tuning.hand_over_above);
+    LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, plain_settings, states, x, counters_, buffers_.loop);
     if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
-    if (options_.tuning.active_set && active_set_applies(lcp_)) {
+    if (active_set_next) {
         const int before = counters_.pivots;
         outcome = by_active_set(states, x);
         if (outcome == LoopOutcome::Converged) return outcome;

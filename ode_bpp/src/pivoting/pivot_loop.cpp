@@ -202,6 +202,8 @@ private:
                 orient_pinned_rows(it(), states);
                 return LoopOutcome::Converged;
             }
+            if (settings_.hand_over_above > 0 && inf.count() > settings_.hand_over_above)
+                return give_best(states, x, LoopOutcome::MaxIterations);
             if (inf.count() < least_count) {
                 least_count = inf.count();
                 last_progress = step;

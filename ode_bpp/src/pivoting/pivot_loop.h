@@ -35,6 +35,10 @@ struct PivotSettings {
     /// a block step is a function of the index set, so the run has entered a cycle and waiting
     /// only repeats it.
     int stall_after = 0;
+    /// A step that leaves more rows infeasible than this ends the run at once with
+    /// LoopOutcome::MaxIterations, x and states as for that outcome (Tuning::hand_over_above);
+    /// 0: never.
+    int hand_over_above = 0;
     /// After convergence on the unshifted problem, free the tight rows whose multiplier has the
     /// wrong sign beyond the factor's accuracy and pivot on from there (pivot_loop.cpp, polish);
     /// the new answer replaces the first only if it converges too.

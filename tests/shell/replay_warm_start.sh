@@ -26,7 +26,7 @@ capture states "$solve" --methods bpp --warm-states --csv "$WORK/states.csv" "$W
 
 # pivots per captured island: inside ODE (step, island) against the replays (file name)
 python3 - "$WORK" <<'EOF' || fail "the warm replay does not reproduce the solves inside ODE"
-import csv, re, sys
+import csv, glob, re, sys
 work = sys.argv[1]
 inside = {(int(r['step']), int(r['island'])): int(r['pivots']) for r in csv.DictReader(open(f'{work}/inside.csv'))}
 def replayed(name):
@@ -44,7 +44,6 @@ if wrong:
 if all(cold[k] == warm[k] for k in warm):
     sys.exit('every cold solve took the warm one\'s pivots: the corpus cannot tell a warm start from none')
 # --warm-states drops the recorded ordering only: where none was recorded it is --warm
-import glob, os
 unordered = [k for k in warm if not any(b'ordering=' in open(f, 'rb').read()
                                         for f in glob.glob(f'{work}/corpus/*-s{k[0]:06d}-i{k[1]:02d}.mlcp'))]
 if not unordered:

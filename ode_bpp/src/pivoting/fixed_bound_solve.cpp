@@ -44,7 +44,7 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
     const bool active_set_next = rescue_allowed && options_.tuning.active_set && active_set_applies(lcp_);
     PivotSettings plain_settings = settings(rescue_allowed ? std::min(budget, plain) : budget);
     if (active_set_next && start_bounds_ != StartBounds::Moved)
-        plain_settings.hand_over_above = std::max(0, options_.tuning.hand_over_above);
+        plain_settings.hand_over_above = options_.tuning.hand_over_above;  // <= 0: never (pivot_loop.h)
     LoopOutcome outcome = pivot_fixed_bounds(lcp_, solver_, plain_settings, states, x, counters_, buffers_.loop);
     if (outcome != LoopOutcome::MaxIterations || !rescue_allowed || left() <= 0) return outcome;
     if (active_set_next) {

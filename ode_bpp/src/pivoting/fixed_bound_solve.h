@@ -4,9 +4,9 @@
 // Tuning::rescue_after steps (rescue_after_moved_bounds, or rescue_after_moved_bounds_cold without
 // a warm start, for a solve whose bounds have just moved, StartBounds), or whose step leaves more
 // than Tuning::hand_over_above rows infeasible (other solves), the active-set method on an
-// incremental factor kept on its envelope (active_set.h, which terminates finitely), then the rescue continuation, then the plain loop
-// again where the rescue gives up; and all of it again one rung up the breakdown ladder after a
-// Cholesky breakdown.
+// incremental factor kept on its envelope (active_set.h, which terminates finitely), then the
+// rescue continuation, then the plain loop again where the rescue gives up; and all of it again
+// one rung up the breakdown ladder after a Cholesky breakdown.
 //
 // Index space: the permuted space of the BoxedLcp and its FreeSolver.
 #pragma once

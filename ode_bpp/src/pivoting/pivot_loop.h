@@ -37,7 +37,7 @@ struct PivotSettings {
     int stall_after = 0;
     /// A step that leaves more rows infeasible than this ends the run at once with
     /// LoopOutcome::MaxIterations, x and states as for that outcome (Tuning::hand_over_above);
-    /// 0: never.
+    /// 0 or less: never.
     int hand_over_above = 0;
     /// After convergence on the unshifted problem, free the tight rows whose multiplier has the
     /// wrong sign beyond the factor's accuracy and pivot on from there (pivot_loop.cpp, polish);

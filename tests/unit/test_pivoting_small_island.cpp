@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "ode_bpp/io.h"
 #include "ode_bpp/solver.h"
@@ -183,6 +185,38 @@ TEST(SmallIsland, MurtysPivotSettlesRedundantFrictionRowsFromAMirroredWarmStart)
     EXPECT_LT(murty.pivoting.pivots, block.pivoting.pivots);
     EXPECT_LT(max_abs_diff(eager, cold), 1e-9);
     EXPECT_LT(max_abs_diff(patient, cold), 1e-9);
+}
+
+/// A box of the cannon scene sliding on four coplanar contacts (tests/data/captured/README.md),
+/// from the index set the world step started it from: its eight friction rows have rank three,
+/// and from the fifth step of Frozen friction's second solve on Murty's single pivots wander
+/// through their near null space, x swinging to 1e7, until the small path's budget runs out and
+/// the general driver takes over. From Tuning::rescue_after plain steps on, the active set settles
+/// it on the small path, at the answer of the general driver.
+TEST(SmallIsland, ActiveSetSettlesASlidingBoxWhereMurtysPivotsWander) {
+    const ReadResult read = read_mlcp((io_test::data_dir() / "captured" / "cannon-sliding-box-murty-wanders-168.mlcp").string());
+    ASSERT_TRUE(read.ok) << read.error;
+    const MlcpFile& f = read.file;
+    std::string error;
+    const std::optional<Start> start = start_from_metadata(f.meta, f.n, &error);
+    ASSERT_TRUE(start.has_value()) << error;
+    Options murty_only;
+    murty_only.tuning.rescue_after = 0;
+    std::vector<double> settled(f.n), wandered(f.n), general(f.n);
+    const Result active = solve(f.view(), Options{}, settled.data(), *start);
+    const Result murty = solve(f.view(), murty_only, wandered.data(), *start);
+    Options general_only;
+    general_only.tuning.dense_island_rows = 0;
+    const Result reference = solve(f.view(), general_only, general.data(), *start);
+    ASSERT_EQ(active.status, Status::Converged) << active.message;
+    ASSERT_EQ(reference.status, Status::Converged) << reference.message;
+    ASSERT_GT(active.pivoting.murty_pivots, 0);
+    // every step on the small path refactors densely (general driver: deletions and updates)
+    EXPECT_EQ(active.pivoting.refactor_steps, active.pivoting.pivots);
+    EXPECT_LE(active.pivoting.pivots, 2 * 12);
+    EXPECT_GT(murty.pivoting.pivots, 100);  // one fixed-bound solve's budget, spent
+    // cond(A) near 1e10 (CFM 1e-10 on the redundant rows): agreement to about eps * cond
+    EXPECT_LT(max_abs_diff(settled, general), 1e-8 * (1 + inf_norm(general)));
 }
 
 TEST(SmallIsland, ReportsInvalidMatricesAsValidateDoes) {

@@ -153,7 +153,9 @@ struct Tuning {
     /// finish, the solve starts again from its start through a regularization continuation
     /// (A + delta I, delta falling adaptively from 1e-4 max_i A_ii to the problem's own,
     /// pivoting/regularization.h), with the rest of the budget; if that gives up, the plain
-    /// attempt resumes. 0: none of this (the plain attempt has the whole budget).
+    /// attempt resumes. 0: none of this (the plain attempt has the whole budget). The
+    /// small-island path counts its steps alike and runs the active set densely; what that does
+    /// not finish goes to the general driver (pivoting/small_island.h).
     int rescue_after = 8;
     /// The same for Frozen friction's second fixed-bound solve from a warm start (Start::states,
     /// as inside ODE): its friction rows have just been bounded anew by mu times the frictionless

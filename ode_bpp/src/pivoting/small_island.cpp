@@ -8,6 +8,7 @@
 #include "linalg/dense_cholesky.h"
 #include "ode_bpp/residuals.h"
 #include "pivoting/classify_row.h"
+#include "pivoting/murty_rule.h"
 #include "residuals.h"
 
 namespace ode_bpp::pivoting {
@@ -39,8 +40,10 @@ void at_least(std::vector<T>& v, std::size_t n) {
 /// order) with x_F = 0 on entry, A_FF factored afresh in ws.factor; false when A_FF is not
 /// positive definite. x: n entries, in and out; ws.loaded[0..nl): the rows of x_T that are not 0,
 /// ascending. Each row of A_FF is factored as soon as it is gathered, and the forward solve's
-/// entry taken with it (linalg/dense_cholesky.h): one pass.
-bool solve_free_rows(const Problem& p, int nf, int nl, SmallIslandBuffers& ws, std::vector<double>& x) {
+/// entry taken with it (linalg/dense_cholesky.h): one pass. always_inline, as classify_rows: the
+/// plain steps and the active set both call it.
+[[gnu::always_inline]] inline bool solve_free_rows(const Problem& p, int nf, int nl, SmallIslandBuffers& ws,
+                                                   std::vector<double>& x) {
     const int n = p.n;
     const int* free = ws.free.data();
     const int* loaded = ws.loaded.data();
@@ -75,7 +78,8 @@ class SmallIsland {
 public:
     SmallIsland(const Problem& p, const Options& o, SmallIslandBuffers& ws, Result& r) : p_(p), o_(o), ws_(ws), r_(r), n_(p.n) {
         at_least(ws_.factor, static_cast<std::size_t>(n_) * n_);
-        for (auto* v : {&ws_.rhs, &ws_.inverse_diagonal, &ws_.w, &ws_.scale, &ws_.lo, &ws_.hi}) at_least(*v, static_cast<std::size_t>(n_));
+        for (auto* v : {&ws_.rhs, &ws_.inverse_diagonal, &ws_.w, &ws_.scale, &ws_.lo, &ws_.hi, &ws_.best_x, &ws_.target})
+            at_least(*v, static_cast<std::size_t>(n_));
         at_least(ws_.free, static_cast<std::size_t>(n_));
         at_least(ws_.loaded, static_cast<std::size_t>(n_));
         at_least(ws_.unpinned, static_cast<std::size_t>(n_));
@@ -137,10 +141,11 @@ private:
         }
     }
 
-    /// At most max_steps block steps from states (Júdice-Pires: the count of infeasible rows must
-    /// fall within small_island_murty_after steps, else Murty's single pivot on the largest
-    /// infeasible index);
-    /// true when an index set satisfies Eq. 4 in every row. steps: out, the steps taken.
+    /// At most max_steps steps from states: block steps (Júdice-Pires: the count of infeasible rows
+    /// must fall within small_island_murty_after steps, else Murty's single pivot on the largest
+    /// infeasible index), and from Tuning::rescue_after steps on the active set, as the general
+    /// driver's plain attempt hands over (fixed_bound_solve.h); true when an index set satisfies
+    /// Eq. 4 in every row. steps: out, the steps taken.
     bool pivot(std::vector<RowState>& states, std::vector<double>& x, int max_steps, int& steps) {
         normalize(states);
         int least_count = n_ + 1;
@@ -155,7 +160,8 @@ private:
                 orient_pinned_rows(states);
                 return true;
             }
-            remember_if_best(inf, states);  // only Murty's phase reads it, after an infeasible step
+            remember_if_best(inf, states, x);  // Murty's phase and the active set start from it
+            if (active_set_after(steps)) return by_active_set(states, x, max_steps, steps);
             if (inf.count() < least_count) {
                 least_count = inf.count();
                 block_steps_left = std::max(0, o_.tuning.small_island_murty_after);
@@ -175,9 +181,110 @@ private:
         return false;
     }
 
+    /// True when the plain steps are spent and the active set goes on (Tuning::rescue_after,
+    /// Tuning::active_set; rescue_after 0: never).
+    bool active_set_after(int steps) const {
+        return o_.tuning.active_set && o_.tuning.rescue_after > 0 && steps >= o_.tuning.rescue_after;
+    }
+
+    /// The primal-feasible active-set method of active_set.h, densely: from the least infeasible
+    /// iterate projected onto the bounds, x* = the face's minimizer (Eq. 6 with x_T fixed); a ratio
+    /// test moves x towards it until the first free row meets a bound and joins T; at x* the tight
+    /// row whose multiplier is most wrong (Eq. 4) leaves T, one at a time (Nocedal & Wright,
+    /// Alg. 16.3; finite by their Thm. 16.5, A + CFM being SPD). Each step refactors A_FF. Where
+    /// Murty's single pivots wander through the near null space of a sliding box's coplanar
+    /// contacts (113 steps on a 12-row cannon island, docs/tuning.md) it finishes in a few dozen
+    /// at most. Out of line: the plain steps' code stays as compact as before.
+    [[gnu::noinline]] bool by_active_set(std::vector<RowState>& states, std::vector<double>& x, int max_steps,
+                                         int& steps) {
+        states = ws_.best_states;
+        std::copy(ws_.best_x.begin(), ws_.best_x.begin() + n_, x.begin());
+        project(states, x);
+        while (steps < max_steps) {
+            ++steps;
+            ++r_.pivoting.murty_pivots;
+            std::copy(x.begin(), x.end(), ws_.target.begin());
+            if (!solve_face(states, ws_.target)) return false;
+            const Blocking block = step_length(x);
+            if (block.row >= 0) {
+                move(block, states, x);
+                continue;
+            }
+            std::copy(ws_.target.begin(), ws_.target.begin() + n_, x.begin());
+            refresh_w(x);
+            const Infeasibility& inf = classify(states, x);
+            if (inf.count() == 0) {
+                orient_pinned_rows(states);
+                return true;
+            }
+            states[inf.rows[most_violated(inf)]] = RowState::Free;  // tight: x* kept free rows within bounds
+        }
+        return false;
+    }
+
+    /// x onto [lo, hi]; a free row that lands on a bound is tight there, so that every free row
+    /// is strictly inside its bounds.
+    void project(std::vector<RowState>& states, std::vector<double>& x) const {
+        for (int i = 0; i < n_; ++i) {
+            const double lo = ws_.lo[i], hi = ws_.hi[i];
+            if (states[i] != RowState::Free) {
+                x[i] = states[i] == RowState::AtLo ? lo : hi;
+                continue;
+            }
+            x[i] = std::clamp(x[i], lo, hi);
+            if (x[i] == lo) states[i] = RowState::AtLo;
+            else if (x[i] == hi) states[i] = RowState::AtHi;
+        }
+    }
+
+    /// The ratio test along x* - x (x* in ws_.target): the first free row to reach a bound, and
+    /// the fraction of the step that takes it there; row -1 when x* is within every bound.
+    struct Blocking {
+        int row = -1;
+        RowState to = RowState::Free;
+        double alpha = 1;
+    };
+    Blocking step_length(const std::vector<double>& x) const {
+        Blocking b;
+        for (int i = 0; i < n_; ++i) {
+            const double target = ws_.target[i];
+            if (target < ws_.lo[i] && target < x[i]) {
+                const double alpha = (ws_.lo[i] - x[i]) / (target - x[i]);
+                if (b.row < 0 || alpha < b.alpha) b = {i, RowState::AtLo, alpha};
+            } else if (target > ws_.hi[i] && target > x[i]) {
+                const double alpha = (ws_.hi[i] - x[i]) / (target - x[i]);
+                if (b.row < 0 || alpha < b.alpha) b = {i, RowState::AtHi, alpha};
+            }
+        }
+        return b;
+    }
+
+    /// x += alpha (x* - x) on the free rows; the blocking row, and any other the step takes onto a
+    /// bound, joins T there.
+    void move(const Blocking& b, std::vector<RowState>& states, std::vector<double>& x) const {
+        for (int i = 0; i < n_; ++i) {
+            if (states[i] != RowState::Free) continue;
+            x[i] += b.alpha * (ws_.target[i] - x[i]);
+            if (x[i] <= ws_.lo[i]) states[i] = RowState::AtLo;
+            else if (x[i] >= ws_.hi[i]) states[i] = RowState::AtHi;
+            if (states[i] != RowState::Free) x[i] = states[i] == RowState::AtLo ? ws_.lo[i] : ws_.hi[i];
+        }
+        states[b.row] = b.to;
+        x[b.row] = b.to == RowState::AtLo ? ws_.lo[b.row] : ws_.hi[b.row];
+    }
+
     /// Eq. 6 densely: x_T at its bounds, L_FF L_FF^T = A_FF, x_F = A_FF^-1 (b_F - A_FT x_T); then
     /// w = A x - b and the row scales. False when a Cholesky pivot breaks down.
     bool solve_step(const std::vector<RowState>& states, std::vector<double>& x) {
+        if (!solve_face(states, x)) return false;
+        refresh_w(x);
+        return true;
+    }
+
+    /// x_T at its bounds and x_F = A_FF^-1 (b_F - A_FT x_T) (Eq. 6): the minimizer of
+    /// 1/2 x'Ax - b'x on the face that fixes x_T. x: n entries, out. False when a Cholesky pivot
+    /// breaks down. Counts one pivot step, a refactorization.
+    [[gnu::always_inline]] bool solve_face(const std::vector<RowState>& states, std::vector<double>& x) {
         int nf = 0, nl = 0, tight = 0;
         for (int i = 0; i < n_; ++i) {
             if (states[i] == RowState::Free) {
@@ -192,9 +299,7 @@ private:
         ++r_.pivoting.pivots;
         ++r_.pivoting.refactor_steps;
         if (o_.record_steps) r_.pivoting.tight_per_step.push_back(tight);
-        if (nf > 0 && !solve_free_rows(p_, nf, nl, ws_, x)) return false;
-        refresh_w(x);
-        return true;
+        return nf == 0 || solve_free_rows(p_, nf, nl, ws_, x);
     }
 
 
@@ -207,7 +312,7 @@ private:
     }
 
     /// Eq. 4 row by row (classify_row.h).
-    const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
+    [[gnu::always_inline]] const Infeasibility& classify(const std::vector<RowState>& states, const std::vector<double>& x) {
         const auto diag = [this](int i) { return p_.A[static_cast<std::ptrdiff_t>(i) * p_.lda + i]; };
         classify_rows(n_, states, x, ws_.w, ws_.lo, ws_.hi, diag, ws_.scale, o_.tolerance, ws_.inf);
         return ws_.inf;
@@ -220,11 +325,12 @@ private:
         states[inf.rows.back()] = inf.flip_to.back();
     }
 
-    void remember_if_best(const Infeasibility& inf, const std::vector<RowState>& states) {
+    void remember_if_best(const Infeasibility& inf, const std::vector<RowState>& states, const std::vector<double>& x) {
         if (inf.count() > best_count_ || (inf.count() == best_count_ && inf.violation >= best_violation_)) return;
         best_count_ = inf.count();
         best_violation_ = inf.violation;
         ws_.best_states = states;
+        std::copy(x.begin(), x.begin() + n_, ws_.best_x.begin());
         ws_.best_inf = inf;
     }
 

@@ -1,6 +1,7 @@
 // The small-island path of Method::Bpp: block principal pivoting (paper Alg. 1, Júdice-Pires with
 // Murty's safeguard) on a dense A of at most Tuning::dense_island_rows rows, in the caller's
-// order, with Frozen friction.
+// order, with Frozen friction; after Tuning::rescue_after steps, the active-set method of
+// active_set.h, densely, as the general driver's plain attempt hands over to it.
 //
 // On an island of a few rows the general driver's set-up (ordering, factor strategy, permuted
 // copies, rescue bookkeeping) costs several times the pivoting itself (docs/benchmarks.md, small
@@ -31,6 +32,8 @@ struct SmallIslandBuffers {
     std::vector<int> free, loaded, unpinned;  ///< free rows, tight rows with x != 0, rows that are not pinned friction
     std::vector<RowState> requested, best_states, trial, kept_states;
     std::vector<double> kept_x, kept_w, kept_scale;
+    std::vector<double> best_x;  ///< x of the least infeasible iterate (best_states), where the active set starts
+    std::vector<double> target;  ///< the active set's face minimizer x*
     Infeasibility inf, best_inf;
 };
 

@@ -203,8 +203,7 @@ private:
         while (steps < max_steps) {
             ++steps;
             ++r_.pivoting.murty_pivots;
-            std::copy(x.begin(), x.end(), ws_.target.begin());
-            if (!solve_face(states, ws_.target)) return false;
+            if (!solve_face(states, ws_.target)) return false;  // writes every entry of x*
             const Blocking block = step_length(x);
             if (block.row >= 0) {
                 move(block, states, x);
@@ -226,14 +225,13 @@ private:
     /// is strictly inside its bounds.
     void project(std::vector<RowState>& states, std::vector<double>& x) const {
         for (int i = 0; i < n_; ++i) {
-            const double lo = ws_.lo[i], hi = ws_.hi[i];
             if (states[i] != RowState::Free) {
-                x[i] = states[i] == RowState::AtLo ? lo : hi;
+                x[i] = bound(i, states[i]);
                 continue;
             }
-            x[i] = std::clamp(x[i], lo, hi);
-            if (x[i] == lo) states[i] = RowState::AtLo;
-            else if (x[i] == hi) states[i] = RowState::AtHi;
+            x[i] = std::clamp(x[i], ws_.lo[i], ws_.hi[i]);
+            if (x[i] == ws_.lo[i]) states[i] = RowState::AtLo;
+            else if (x[i] == ws_.hi[i]) states[i] = RowState::AtHi;
         }
     }
 
@@ -262,16 +260,21 @@ private:
     /// x += alpha (x* - x) on the free rows; the blocking row, and any other the step takes onto a
     /// bound, joins T there.
     void move(const Blocking& b, std::vector<RowState>& states, std::vector<double>& x) const {
+        const auto tighten = [&](int i, RowState to) {
+            states[i] = to;
+            x[i] = bound(i, to);
+        };
         for (int i = 0; i < n_; ++i) {
             if (states[i] != RowState::Free) continue;
             x[i] += b.alpha * (ws_.target[i] - x[i]);
-            if (x[i] <= ws_.lo[i]) states[i] = RowState::AtLo;
-            else if (x[i] >= ws_.hi[i]) states[i] = RowState::AtHi;
-            if (states[i] != RowState::Free) x[i] = states[i] == RowState::AtLo ? ws_.lo[i] : ws_.hi[i];
+            if (x[i] <= ws_.lo[i]) tighten(i, RowState::AtLo);
+            else if (x[i] >= ws_.hi[i]) tighten(i, RowState::AtHi);
         }
-        states[b.row] = b.to;
-        x[b.row] = b.to == RowState::AtLo ? ws_.lo[b.row] : ws_.hi[b.row];
+        tighten(b.row, b.to);
     }
+
+    /// The bound a tight row sits at: lo for AtLo, hi for AtHi.
+    double bound(int i, RowState tight) const { return tight == RowState::AtLo ? ws_.lo[i] : ws_.hi[i]; }
 
     /// Eq. 6 densely: x_T at its bounds, L_FF L_FF^T = A_FF, x_F = A_FF^-1 (b_F - A_FT x_T); then
     /// w = A x - b and the row scales. False when a Cholesky pivot breaks down.
@@ -291,7 +294,7 @@ private:
                 ws_.free[nf++] = i;
                 x[i] = 0;
             } else {
-                x[i] = states[i] == RowState::AtLo ? ws_.lo[i] : ws_.hi[i];
+                x[i] = bound(i, states[i]);
                 if (x[i] != 0) ws_.loaded[nl++] = i;
                 ++tight;
             }

@@ -50,6 +50,7 @@ public:
     dJointGroupID contacts;
     dBodyID box;
     std::vector<dBodyID> bodies;  ///< the box, then the pendulum's two links
+    void (*tune_contact)(dContact&) = nullptr;  ///< applied to each contact the collider makes
 
 private:
     dBodyID add_box(double x, double y, double z, double mass) {
@@ -76,6 +77,7 @@ private:
         for (int i = 0; i < n; ++i) {
             c[i].surface.mode = dContactApprox1;
             c[i].surface.mu = 0.8;
+            if (self->tune_contact != nullptr) self->tune_contact(c[i]);
             dJointAttach(dJointCreateContact(self->world, self->contacts, &c[i]), b1, b2);
         }
     }
@@ -258,6 +260,49 @@ TEST(OdeHook, FailedSolverFallsBackToDantzigAndTheWorldStaysSane) {
         again.step();
         expect_same_motion(ref, again, 1e-9, i);  // every island answered by ODE's Dantzig
     }
+}
+
+/// The fallback names the world step reported after each island's solve.
+void record_fallback(const dMLCP*, const dMLCPIslandStats* stats, void* names) {
+    if (stats != nullptr && stats->fallback != nullptr)
+        static_cast<std::vector<std::string>*>(names)->emplace_back(stats->fallback);
+}
+
+bool all_finite(const dReal* v, int n) {
+    for (int i = 0; i < n; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+
+// A collider may hand over a NaN depth (b turns NaN) or a NaN normal (J does); trimesh colliders
+// can. bpp refuses such an island and ODE's Dantzig cannot answer it either, so the safety net's
+// last line (patches/0001) gives that island no impulses for the step instead of NaN: the box
+// falls through the ground, the pendulum's own island is untouched, and every body stays finite
+// (without it ODE's step aborts on a NaN quaternion).
+TEST(OdeHook, NonFiniteContactsCostTheirIslandItsImpulsesNotTheWorld) {
+    OdeLifetime ode;
+    SmallScene ref("bpp");
+    using Tune = void (*)(dContact&);
+    for (const Tune tune : {Tune{[](dContact& c) { c.geom.depth = NAN; }}, Tune{[](dContact& c) { c.geom.normal[2] = NAN; }}}) {
+        SmallScene s("bpp");
+        s.tune_contact = tune;
+        std::vector<std::string> fallbacks;
+        dWorldSetMLCPObserver(s.world, &record_fallback, &fallbacks);
+        for (int i = 0; i < 30; ++i) s.step();
+        for (dBodyID b : s.bodies) {
+            EXPECT_TRUE(all_finite(dBodyGetPosition(b), 3) && all_finite(dBodyGetLinearVel(b), 3) &&
+                        all_finite(dBodyGetAngularVel(b), 3) && all_finite(dBodyGetQuaternion(b), 4));
+        }
+        // 0.5 s without a contact impulse: about 1.2 m of free fall from 0.25 m
+        EXPECT_LT(dBodyGetPosition(s.box)[2], -0.5);
+        dMLCPStepStats total{};
+        dWorldGetMLCPStats(s.world, nullptr, &total);
+        EXPECT_EQ(total.failures, 30) << "the box's island, once per step";
+        ASSERT_EQ(fallbacks.size(), 30u);
+        for (const std::string& name : fallbacks) EXPECT_EQ(name.rfind("none: ODE's Dantzig returned non-finite values", 0), 0u) << name;
+    }
+    for (int i = 0; i < 30; ++i) ref.step();
+    EXPECT_GT(dBodyGetPosition(ref.box)[2], 0.2) << "with finite contacts the box rests";
 }
 
 // A world's settings end with it: a world created later at the same address (the allocator

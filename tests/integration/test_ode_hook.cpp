@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdarg>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -268,6 +270,27 @@ void record_fallback(const dMLCP*, const dMLCPIslandStats* stats, void* names) {
         static_cast<std::vector<std::string>*>(names)->emplace_back(stats->fallback);
 }
 
+/// ODE's messages that come from ode-bpp, while a MessageLog lives (the previous handler after).
+struct MessageLog {
+    static std::vector<std::string>& lines() {
+        static std::vector<std::string> log;
+        return log;
+    }
+    static void record(int, const char* format, va_list args) {
+        char text[1024];
+        std::vsnprintf(text, sizeof text, format, args);
+        if (std::strncmp(text, "ode-bpp:", 8) == 0) lines().emplace_back(text);
+    }
+    MessageLog() : previous(dGetMessageHandler()) {
+        lines().clear();
+        dSetMessageHandler(&record);
+    }
+    ~MessageLog() { dSetMessageHandler(previous); }
+    MessageLog(const MessageLog&) = delete;
+    MessageLog& operator=(const MessageLog&) = delete;
+    dMessageFunction* previous;
+};
+
 bool all_finite(const dReal* v, int n) {
     for (int i = 0; i < n; ++i)
         if (!std::isfinite(v[i])) return false;
@@ -284,6 +307,7 @@ TEST(OdeHook, NonFiniteContactsCostTheirIslandItsImpulsesNotTheWorld) {
     SmallScene ref("bpp");
     using Tune = void (*)(dContact&);
     for (const Tune tune : {Tune{[](dContact& c) { c.geom.depth = NAN; }}, Tune{[](dContact& c) { c.geom.normal[2] = NAN; }}}) {
+        MessageLog messages;
         SmallScene s("bpp");
         s.tune_contact = tune;
         std::vector<std::string> fallbacks;
@@ -300,6 +324,11 @@ TEST(OdeHook, NonFiniteContactsCostTheirIslandItsImpulsesNotTheWorld) {
         EXPECT_EQ(total.failures, 30) << "the box's island, once per step";
         ASSERT_EQ(fallbacks.size(), 30u);
         for (const std::string& name : fallbacks) EXPECT_EQ(name.rfind("none: ODE's Dantzig returned non-finite values", 0), 0u) << name;
+        // the program hears of it once per world, through ODE's message handler, with the reason
+        ASSERT_EQ(messages.lines().size(), 1u);
+        EXPECT_NE(messages.lines()[0].find("bpp could not solve an island of"), std::string::npos) << messages.lines()[0];
+        EXPECT_NE(messages.lines()[0].find("invalid-input: row"), std::string::npos) << messages.lines()[0];
+        EXPECT_NE(messages.lines()[0].find("not finite"), std::string::npos) << messages.lines()[0];
     }
     for (int i = 0; i < 30; ++i) ref.step();
     EXPECT_GT(dBodyGetPosition(ref.box)[2], 0.2) << "with finite contacts the box rests";

@@ -57,6 +57,7 @@ struct WorldState {
     RowStateMemory memory;       // index sets of the previous steps, by row identity
     OrderingCache orderings;     // row orderings of the previous steps, by island structure
     Result last;
+    bool failure_reported = false;  // report_first_failure has spoken for this world
 };
 
 struct HookState {
@@ -188,10 +189,13 @@ IslandPlan plan_island(const dMLCP& problem, Method method, bool known_rows, boo
 
 /// The answer's index set and ordering kept for the next step; r becomes the world's last result,
 /// and r is left holding the previous last result's index set (its storage, for recycling).
-void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, bool use_memory, bool usable,
+/// True when the answer is not usable and is the world's first such: report_first_failure speaks.
+bool keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, bool use_memory, bool usable,
                  IslandScratch& scratch, Result& r) {
     std::lock_guard<std::mutex> g(hook().lock);
     WorldState& ws = hook().worlds[problem.world];  // looked up again: forget_world may have run meanwhile
+    const bool first_failure = !usable && !ws.failure_reported;
+    if (first_failure) ws.failure_reported = true;
     if (use_memory && usable)
         ws.memory.remember(scratch.keys, problem.step, r.states, plan.recalled ? &scratch.slots : nullptr);
     if (known_rows && !plan.small && !r.ordering.empty() &&
@@ -200,6 +204,18 @@ void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
     std::vector<RowState> previous = std::move(ws.last.states);
     ws.last = std::move(r);  // no copy of its vectors per island
     r.states = std::move(previous);
+    return first_failure;
+}
+
+/// An island handed back to ODE unsolved means the program's model is at fault (a NaN contact,
+/// a negative CFM: docs/ode-world-step.md), which the statistics alone would keep quiet. The
+/// first one of a world says so through ODE's message handler (dSetMessageHandler), as ODE's
+/// Dantzig reports its own failures; the later ones are counted in dWorldGetMLCPStats only.
+void report_first_failure(const dMLCP& problem, Method method, const std::string& status, const std::string& why) {
+    dMessage(d_ERR_LCP,
+             "ode-bpp: %s could not solve an island of %d rows (%s: %s); ODE's Dantzig answers it. "
+             "Later failures in this world are counted (dWorldGetMLCPStats), not printed",
+             to_string(method), problem.m, status.c_str(), why.c_str());
 }
 
 /// True when the solver orders q alike with the pricing of Tuning::price_tight_last_orderings
@@ -244,7 +260,13 @@ dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* u
     stats->tight = r.tight;
     stats->fallbacks = r.fallback == Fallback::None ? 0 : 1;
     stats->fallback = fallback_name(r);
-    keep_island(*problem, plan, known_rows, use_memory, status != dMLCPFailed, scratch, r);
+    std::string status_name, why;
+    if (status == dMLCPFailed) {  // taken before keep_island hands r over to the world
+        status_name = to_string(r.status);
+        why = r.message;
+    }
+    if (keep_island(*problem, plan, known_rows, use_memory, status != dMLCPFailed, scratch, r))
+        report_first_failure(*problem, method, status_name, why);
     scratch.workspace.recycle(std::move(r));  // the world's previous last result
     return status;
 }

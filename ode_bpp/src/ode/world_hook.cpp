@@ -57,7 +57,7 @@ struct WorldState {
     RowStateMemory memory;       // index sets of the previous steps, by row identity
     OrderingCache orderings;     // row orderings of the previous steps, by island structure
     Result last;
-    bool failure_reported = false;  // report_first_failure has spoken for this world
+    bool failure_reported = false;  // report_failure has spoken for this world
 };
 
 struct HookState {
@@ -189,13 +189,10 @@ IslandPlan plan_island(const dMLCP& problem, Method method, bool known_rows, boo
 
 /// The answer's index set and ordering kept for the next step; r becomes the world's last result,
 /// and r is left holding the previous last result's index set (its storage, for recycling).
-/// True when the answer is not usable and is the world's first such: report_first_failure speaks.
-bool keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, bool use_memory, bool usable,
+void keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, bool use_memory, bool usable,
                  IslandScratch& scratch, Result& r) {
     std::lock_guard<std::mutex> g(hook().lock);
     WorldState& ws = hook().worlds[problem.world];  // looked up again: forget_world may have run meanwhile
-    const bool first_failure = !usable && !ws.failure_reported;
-    if (first_failure) ws.failure_reported = true;
     if (use_memory && usable)
         ws.memory.remember(scratch.keys, problem.step, r.states, plan.recalled ? &scratch.slots : nullptr);
     if (known_rows && !plan.small && !r.ordering.empty() &&
@@ -204,18 +201,24 @@ bool keep_island(const dMLCP& problem, const IslandPlan& plan, bool known_rows, 
     std::vector<RowState> previous = std::move(ws.last.states);
     ws.last = std::move(r);  // no copy of its vectors per island
     r.states = std::move(previous);
-    return first_failure;
+}
+
+/// True for a world's first island handed back to ODE unsolved, false for every later one.
+bool first_failure_of(dWorldID world) {
+    std::lock_guard<std::mutex> g(hook().lock);
+    return !std::exchange(hook().worlds[world].failure_reported, true);
 }
 
 /// An island handed back to ODE unsolved means the program's model is at fault (a NaN contact,
-/// a negative CFM: docs/ode-world-step.md), which the statistics alone would keep quiet. The
-/// first one of a world says so through ODE's message handler (dSetMessageHandler), as ODE's
-/// Dantzig reports its own failures; the later ones are counted in dWorldGetMLCPStats only.
-void report_first_failure(const dMLCP& problem, Method method, const std::string& status, const std::string& why) {
+/// a negative CFM: docs/ode-world-step.md) or ode-bpp is, which the statistics alone would keep
+/// quiet. The first one of a world says so through ODE's message handler (dSetMessageHandler), as
+/// ODE's Dantzig reports its own failures; the later ones are counted in dWorldGetMLCPStats only.
+void report_failure(const dMLCP& problem, Method method, const char* status, const char* why) {
+    if (!first_failure_of(problem.world)) return;
     dMessage(d_ERR_LCP,
              "ode-bpp: %s could not solve an island of %d rows (%s: %s); ODE's Dantzig answers it. "
              "Later failures in this world are counted (dWorldGetMLCPStats), not printed",
-             to_string(method), problem.m, status.c_str(), why.c_str());
+             to_string(method), problem.m, status, why);
 }
 
 /// True when the solver orders q alike with the pricing of Tuning::price_tight_last_orderings
@@ -260,13 +263,8 @@ dMLCPStatus answer_island(const dMLCP* problem, dMLCPIslandStats* stats, void* u
     stats->tight = r.tight;
     stats->fallbacks = r.fallback == Fallback::None ? 0 : 1;
     stats->fallback = fallback_name(r);
-    std::string status_name, why;
-    if (status == dMLCPFailed) {  // taken before keep_island hands r over to the world
-        status_name = to_string(r.status);
-        why = r.message;
-    }
-    if (keep_island(*problem, plan, known_rows, use_memory, status != dMLCPFailed, scratch, r))
-        report_first_failure(*problem, method, status_name, why);
+    if (status == dMLCPFailed) report_failure(*problem, method, to_string(r.status), r.message.c_str());
+    keep_island(*problem, plan, known_rows, use_memory, status != dMLCPFailed, scratch, r);
     scratch.workspace.recycle(std::move(r));  // the world's previous last result
     return status;
 }
@@ -279,8 +277,9 @@ dMLCPStatus solve_island(const dMLCP* problem, dMLCPIslandStats* stats, void* us
         return answer_island(problem, stats, userdata);
     } catch (const std::bad_alloc&) {
         stats->fallback = "out of memory";
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
         stats->fallback = "internal error";
+        report_failure(*problem, *static_cast<const Method*>(userdata), "internal error", e.what());
     }
     stats->fallbacks = 1;
     return dMLCPFailed;

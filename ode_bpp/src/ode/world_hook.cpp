@@ -216,7 +216,7 @@ bool first_failure_of(dWorldID world) {
 void report_failure(const dMLCP& problem, Method method, const char* status, const char* why) {
     if (!first_failure_of(problem.world)) return;
     dMessage(d_ERR_LCP,
-             "ode-bpp: %s could not solve an island of %d rows (%s: %s); ODE's Dantzig answers it. "
+             "ode-bpp: %s could not solve an island of %d rows (%s: %s); the world step's fallbacks answer it. "
              "Later failures in this world are counted (dWorldGetMLCPStats), not printed",
              to_string(method), problem.m, status, why);
 }

@@ -32,6 +32,15 @@ OwnedProblem dantzig_friction_3x3() {
     return p;
 }
 
+OwnedProblem friction_presses_a_second_contact() {
+    OwnedProblem p = from_rows("friction_presses_a_second_contact", {{2, 0, .5}, {0, 1, -.8}, {.5, -.8, 2}});
+    p.b = {2, 1, .3};
+    p.lo = {0, -1, 0};
+    p.hi = {kInf, 1, kInf};
+    p.findex = {-1, 0, -1};
+    return p;
+}
+
 OwnedProblem duplicated_rows() {
     // two identical contact normals on one body plus a friction-free tangent: J has equal rows
     OwnedProblem p = from_rows("duplicated_rows", {{1, 1, .2}, {1, 1, .2}, {.2, .2, 1}});

@@ -10,6 +10,12 @@ namespace ode_bpp::problems {
 /// row 1 its friction row (mu = 0.5), row 2 unbounded (through infinite bounds, nub = 0).
 OwnedProblem dantzig_friction_3x3();
 
+/// Frozen friction's two solves part ways on a normal: row 0 a normal, row 1 its friction row
+/// (mu = 1), row 2 a second normal that the friction row presses into contact. Held at 0, the
+/// friction row leaves row 2 separating (at lo); at its bound mu x_0 = 1 it makes row 2 carry
+/// 0.32. Answer: x = (0.92, 1, 0.32), states (free, at hi, free).
+OwnedProblem friction_presses_a_second_contact();
+
 /// A 3x3 SPD boxed problem on which Júdice-Pires block steps without Murty's safeguard, started
 /// from all rows free, cycle forever; with the safeguard the loop terminates.
 OwnedProblem block_pivoting_cycle();

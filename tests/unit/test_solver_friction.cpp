@@ -190,5 +190,36 @@ TEST(SolverFriction, ZeroNormalPinsItsFrictionRowsAtZero) {
         }
 }
 
+// From a warm start that is its own answer, Frozen friction's second solve starts there
+// (Tuning::frozen_second_solve_from_warm_start), not where the frictionless solve left the
+// normals (row 2 separating): one step fewer, the same answer. On the small-island path and on
+// the skyline path (dense_island_rows 0).
+TEST(SolverFriction, FrozenSecondSolveStartsFromTheWarmStart) {
+    const auto p = problems::friction_presses_a_second_contact();
+    const std::vector<double> expected = {0.92, 1, 0.32};
+    for (int dense_rows : {32, 0}) {
+        Options o;
+        o.tuning.dense_island_rows = dense_rows;
+        std::vector<double> cold;
+        const Result first = run(p, Method::Bpp, FrictionMode::Frozen, cold, o);
+        ASSERT_EQ(first.status, Status::Converged) << first.message;
+        ASSERT_LT(max_abs_diff(cold, expected), 1e-12);
+        ASSERT_EQ(first.states, (std::vector<RowState>{RowState::Free, RowState::AtHi, RowState::Free}));
+        int pivots[2] = {0, 0};
+        for (bool from_warm : {false, true}) {
+            Options w = o;
+            w.tuning.frozen_second_solve_from_warm_start = from_warm;
+            Start start;
+            start.states = first.states;
+            std::vector<double> x(3, 0.0);
+            const Result r = solve(p, w, x.data(), start);
+            ASSERT_EQ(r.status, Status::Converged) << r.message;
+            EXPECT_LT(max_abs_diff(x, expected), 1e-12) << "dense_island_rows " << dense_rows;
+            pivots[from_warm] = r.pivoting.pivots;
+        }
+        EXPECT_LT(pivots[1], pivots[0]) << "dense_island_rows " << dense_rows;
+    }
+}
+
 }  // namespace
 }  // namespace ode_bpp

@@ -168,6 +168,14 @@ struct Tuning {
     /// most forwarder and winch islands they still end cycling after the first few steps, and the
     /// active set, which starts from the loop's own factor, finishes sooner (docs/tuning.md).
     int rescue_after_moved_bounds_cold = 4;
+    /// Frozen friction's second fixed-bound solve, from a warm start (Start::states), starts
+    /// every row from that warm start; false: its non-friction rows from the first, frictionless
+    /// solve's answer, as a solve without a warm start does. The frictionless answer solves
+    /// another problem: on a resting pile it misses the frictional answer's normals in tens of
+    /// rows, and the active set then took hundreds of single steps to come back to the warm
+    /// start, which was the answer (a 1,083-row rock pile at rest: 561 steps against 1,
+    /// docs/tuning.md).
+    bool frozen_second_solve_from_warm_start = true;
     /// A plain step that leaves more rows infeasible than this ends the plain attempt at once,
     /// before rescue_after steps, and the active set goes on from it; Frozen friction's second
     /// solve keeps its own counts above. From a step that leaves several rows infeasible, block

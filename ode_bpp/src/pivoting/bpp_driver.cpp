@@ -199,7 +199,8 @@ Result solve_bpp(const Problem& problem, const linalg::SymmetricRows& A, const O
         outcome = policy.solve(states, xp);
         note = policy.note();
     } else {
-        outcome = solve_frozen(fixed, q.lcp, q.friction, std::max(1, options.max_pivots), states, xp);
+        outcome = solve_frozen(fixed, q.lcp, q.friction, std::max(1, options.max_pivots), second_start(options, warm),
+                               states, xp);
     }
     xp.resize(static_cast<std::size_t>(problem.n), 0.0);
     Result r = finish(outcome, fixed, counters, q, states, xp, x);

@@ -12,8 +12,13 @@
 
 namespace ode_bpp::pivoting {
 
+SecondStart second_start(const Options& options, bool warm) {
+    return warm && options.tuning.frozen_second_solve_from_warm_start ? SecondStart::Requested
+                                                                      : SecondStart::FrictionRowsRequested;
+}
+
 PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const FrictionSet& friction, int budget,
-                           std::vector<RowState>& states, std::vector<double>& x) {
+                           SecondStart second, std::vector<RowState>& states, std::vector<double>& x) {
     const auto outcome = [](FixedOutcome o) {
         return o == FixedOutcome::NotSpd ? PolicyOutcome::NotSpd
                : o == FixedOutcome::BudgetSpent ? PolicyOutcome::BudgetSpent
@@ -25,7 +30,9 @@ PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const Frictio
     const FixedOutcome frictionless = fixed.solve(states, x, budget, AnswerUse::Intermediate);
     if (frictionless == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
     friction.set_bounds(lcp, friction.targets(x));
-    for (int i : friction.rows) states[i] = requested[i];
+    if (second == SecondStart::Requested) states = requested;
+    else
+        for (int i : friction.rows) states[i] = requested[i];
     const FixedOutcome frozen = fixed.solve(states, x, budget, AnswerUse::Final, StartBounds::Moved);
     if (frozen == FixedOutcome::NotSpd) return PolicyOutcome::NotSpd;
     return frictionless == FixedOutcome::BudgetSpent ? PolicyOutcome::BudgetSpent : outcome(frozen);
@@ -41,7 +48,9 @@ PolicyOutcome ConsistentFriction::solve(std::vector<RowState>& states, std::vect
         stage = lemke(states, x);
         if (stage != Stage::Unfinished) return stage == Stage::Finished ? PolicyOutcome::Converged : PolicyOutcome::NotSpd;
     }
-    const PolicyOutcome frozen = solve_frozen(fixed_, lcp_, friction_, budget(), states, x);
+    // here the states are what the linked stages left where they ran, no longer the warm start
+    const PolicyOutcome frozen =
+        solve_frozen(fixed_, lcp_, friction_, budget(), SecondStart::FrictionRowsRequested, states, x);
     if (frozen == PolicyOutcome::NotSpd || friction_.empty()) return frozen;
     bool budget_spent = frozen == PolicyOutcome::BudgetSpent;
     if (options_.tuning.link_friction) {

@@ -25,12 +25,20 @@ enum class PolicyOutcome {
     NotSpd,                ///< a Cholesky breakdown even on the largest regularization
 };
 
+/// Where Frozen friction's second solve starts: every row as requested (a warm start,
+/// Tuning::frozen_second_solve_from_warm_start), or the friction rows as requested and the others
+/// where the frictionless solve left them.
+enum class SecondStart { Requested, FrictionRowsRequested };
+
 /// Dantzig's semantics (ODE lcp.cpp): every friction row held at 0 while the others are solved,
-/// then bounds +-|mu x_normal| from those normals, kept fixed for a second solve that starts the
-/// friction rows from their requested states (StartBounds::Moved: from a warm start, the active
-/// set takes it over sooner). Without friction rows, one solve.
+/// then bounds +-|mu x_normal| from those normals, kept fixed for a second solve that starts from
+/// `second` (StartBounds::Moved: from a warm start, the active set takes it over sooner). Without
+/// friction rows, one solve. states: in, the requested start; out, the final index set.
 PolicyOutcome solve_frozen(FixedBoundSolver& fixed, BoxedLcp& lcp, const FrictionSet& friction, int budget,
-                           std::vector<RowState>& states, std::vector<double>& x);
+                           SecondStart second, std::vector<RowState>& states, std::vector<double>& x);
+
+/// The second start Options ask for, given whether the solve started from a warm start.
+SecondStart second_start(const Options& options, bool warm);
 
 /// Consistent friction: every friction impulse within mu times its *own* normal. Stages, in order:
 ///  1. with a warm start, a linked solve straight from it (friction bounds moving with the

@@ -8,6 +8,7 @@
 #include "linalg/dense_cholesky.h"
 #include "ode_bpp/residuals.h"
 #include "pivoting/classify_row.h"
+#include "pivoting/friction_policy.h"
 #include "pivoting/murty_rule.h"
 #include "residuals.h"
 
@@ -87,8 +88,8 @@ public:
 
     /// Frozen friction (Dantzig's semantics, as the driver's solve_frozen): friction rows held at
     /// 0 while the rest is solved, then bounds +-|mu x_normal| from those normals, kept fixed for a
-    /// second solve that starts the friction rows from their requested states.
-    bool solve(std::vector<RowState>& states, std::vector<double>& x) {
+    /// second solve that starts from `second` (friction_policy.h).
+    bool solve(std::vector<RowState>& states, std::vector<double>& x, SecondStart second) {
         set_fixed_bounds();
         const bool friction = p_.findex != nullptr && std::any_of(p_.findex, p_.findex + n_, [](int f) { return f >= 0; });
         if (!friction) return converges(states, x);
@@ -105,6 +106,7 @@ public:
             std::tie(ws_.lo[i], ws_.hi[i]) = effective_bounds(p_, ConstStrided{x.data(), 1}, i);
             states[i] = ws_.requested[i];
         }
+        if (second == SecondStart::Requested) states = ws_.requested;
         return converges(states, x);
     }
 
@@ -410,7 +412,8 @@ bool solve_small_island(const Problem& problem, const Options& options, const St
     if (start.states.empty()) states.assign(static_cast<std::size_t>(problem.n), RowState::Free);
     else states.assign(start.states.begin(), start.states.end());
     x.assign(static_cast<std::size_t>(problem.n), 0.0);
-    if (!SmallIsland(problem, options, ws, r).solve(states, x)) return false;
+    const SecondStart second = second_start(options, !start.states.empty());
+    if (!SmallIsland(problem, options, ws, r).solve(states, x, second)) return false;
     // an answer that overflowed (finite but huge entries of A) is the general chain's to handle
     if (!std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); })) return false;
     r.status = Status::Converged;

@@ -104,7 +104,7 @@ public:
         for (int i = 0; i < n_; ++i) {
             if (!is_friction_row(p_, i)) continue;
             std::tie(ws_.lo[i], ws_.hi[i]) = effective_bounds(p_, ConstStrided{x.data(), 1}, i);
-            states[i] = ws_.requested[i];
+            if (second == SecondStart::FrictionRowsRequested) states[i] = ws_.requested[i];
         }
         if (second == SecondStart::Requested) states = ws_.requested;
         return converges(states, x);

@@ -251,10 +251,12 @@ private:
     /// is loaded and L0 copied from it, a copy costing less than a second load.
     void load_l0() {
         s_.L0.reshape(s_.shape);
-        // A_env takes this shape's storage now, loaded or not: the memory follows the largest
-        // envelope met, not the first step that happens to need A_env (a long run's resident
-        // memory then stops growing once its largest island has been met: make soak)
-        s_.A_env.reshape(s_.shape);
+        // A_env's storage grows to this shape's now, loaded or not: the memory follows the
+        // largest envelope met, not the first step that happens to need A_env (a long run's
+        // resident memory then stops growing once its largest island has been met: make soak).
+        // Only the values: the shape itself is copied by load_a_env, where A_env is used.
+        std::vector<double>& a_env = s_.A_env.values();
+        if (a_env.size() < static_cast<std::size_t>(s_.shape.size())) a_env.resize(static_cast<std::size_t>(s_.shape.size()));
         const bool a_env_wanted = s_.needed_a_env;
         s_.needed_a_env = false;
         a_env_loaded_ = false;
@@ -266,8 +268,9 @@ private:
         s_.L0.copy_tail_from(s_.A_env, 0);
     }
 
-    /// s_.A_env = Ap + shift_ I in the shape of this prepare (load_l0 gave it the shape).
+    /// s_.A_env = Ap + shift_ I in the shape of this prepare.
     void load_a_env() {
+        s_.A_env.reshape(s_.shape);
         load_columns(s_.A_env, 0);
         a_env_loaded_ = true;
     }

@@ -3,16 +3,28 @@
 //
 //   ode-bpp-soak SCENE... [--solver NAME] [--steps N] [--every K] [--baseline STEP] [--csv FILE]
 //
-// Every K steps (default 1,000) one CSV row per scene: resident memory (RSS, from /proc/self/statm),
-// its peak, ODE's statistics (islands, largest island since the last row, solves that fell back,
-// solves answered by ODE's Dantzig), and wall time; a progress line goes to stderr. At the end of
-// each scene, one verdict line on stdout:
+// Every K steps (default 1,000) one CSV row per scene: the bytes in live heap allocations (malloc's
+// own count, mallinfo2), resident memory (RSS, from /proc/self/statm) and its peak, ODE's
+// statistics (islands, largest island since the last row, solves that fell back, solves answered by
+// ODE's Dantzig), and wall time; a progress line goes to stderr. At the end of each scene, one
+// verdict line on stdout:
 //   - finite: every body's position, velocity and orientation finite at every row;
 //   - fallbacks: the count at the last step equals the count at the baseline step (10,000);
-//   - memory: RSS at the last step within 1 % of RSS at the baseline step.
+//   - heap: the live heap's floor over the last tenth of the run (the smallest of its samples) at
+//     most 1 % above its floor over the tenth after the baseline step;
+//   - RSS: at the last step at most 5 % above the baseline step's.
+// Why floors, and why two measures with two bounds (docs/soak.md has the measurements): the live
+// heap holds the scene's current contacts, islands and warm starts, so it moves with the trajectory
+// between samples (the winch: +-20 kB of 2.6 MB); a leak raises its floor, a passing state does not.
+// Its 1 % is a sharp test: a leak of 32 bytes a step fails the short soak of make test. RSS counts
+// the pages of malloc's arena the first time they are touched, and where the arena's pages fall
+// differs between runs (address space layout randomization): the same scene and steps read RSS
+// changes of -1.4 % to +1.5 %. RSS stays judged, loosely, so that fragmentation (RSS growing while
+// the heap does not) still fails.
 // Nothing is kept per step, so the tool's own memory is flat. Exit status: 0 when every scene
 // passed, 1 when one did not, 2 on bad arguments.
 #include <ode/mlcp.h>
+#include <malloc.h>
 #include <ode/ode.h>
 #include <unistd.h>
 
@@ -22,6 +34,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,8 +47,8 @@ using namespace ode_bpp::scenes;
 using Clock = std::chrono::steady_clock;
 
 constexpr int kExitFailed = 1, kExitUsage = 2;
-/// Memory may differ by this share between the baseline step and the last one.
-constexpr double kRssTolerance = 0.01;
+/// Growth allowed from the baseline step to the last one: live heap bytes, and RSS (see the header).
+constexpr double kHeapGrowthLimit = 0.01, kRssGrowthLimit = 0.05;
 
 struct Args {
     std::vector<std::string> scenes;
@@ -85,13 +98,16 @@ Args parse_args(int argc, char** argv) {
     return a;
 }
 
-/// Resident and peak resident memory of this process [kB] (Linux /proc).
+/// Memory of this process [kB]: bytes in live heap allocations (arena and mmapped blocks, glibc's
+/// mallinfo2), resident memory and its peak (Linux /proc).
 struct Memory {
-    long rss_kb = 0, peak_kb = 0;
+    long heap_kb = 0, rss_kb = 0, peak_kb = 0;
 };
 
 Memory memory_now() {
     Memory m;
+    const struct mallinfo2 heap = mallinfo2();
+    m.heap_kb = static_cast<long>((heap.uordblks + heap.hblkhd) / 1024);
     long pages = 0, resident = 0;
     if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
         if (std::fscanf(f, "%ld %ld", &pages, &resident) == 2) m.rss_kb = resident * (sysconf(_SC_PAGESIZE) / 1024);
@@ -128,22 +144,58 @@ struct Sample {
 
 const char* kCsvHeader =
     "scene,solver,step,sim_seconds,rss_kb,peak_rss_kb,islands,max_rows_window,fallbacks,failures,non_finite,"
-    "solve_seconds,wall_seconds\n";
+    "solve_seconds,wall_seconds,heap_kb\n";
 
 void write_row(std::ofstream* csv, const std::string& scene, const std::string& solver, double step_size, const Sample& s) {
     if (!csv) return;
     *csv << scene << ',' << solver << ',' << s.step << ',' << s.step * step_size << ',' << s.memory.rss_kb << ','
          << s.memory.peak_kb << ',' << s.total.islands << ',' << s.window_max_rows << ',' << s.total.fallbacks << ','
-         << s.total.failures << ',' << s.non_finite << ',' << s.total.seconds << ',' << s.wall_seconds << '\n';
+         << s.total.failures << ',' << s.non_finite << ',' << s.total.seconds << ',' << s.wall_seconds << ',' << s.memory.heap_kb
+         << '\n';
     csv->flush();
 }
 
 void report_progress(const std::string& scene, const Args& a, const Sample& s) {
     const double eta = s.wall_seconds / s.step * (a.steps - s.step);
-    std::fprintf(stderr, "[soak] %s/%s step %ld of %ld: RSS %ld kB, fallbacks %lld, largest island %ld rows, %.0f s, ~%.0f s to go\n",
-                 scene.c_str(), a.solver.c_str(), s.step, a.steps, s.memory.rss_kb, static_cast<long long>(s.total.fallbacks),
+    std::fprintf(stderr, "[soak] %s/%s step %ld of %ld: heap %ld kB, RSS %ld kB, fallbacks %lld, largest island %ld rows, %.0f s, ~%.0f s to go\n",
+                 scene.c_str(), a.solver.c_str(), s.step, a.steps, s.memory.heap_kb, s.memory.rss_kb, static_cast<long long>(s.total.fallbacks),
                  s.window_max_rows, s.wall_seconds, eta);
 }
+
+/// A memory measure before and after [kB], and the growth allowed between.
+struct Growth {
+    long before_kb, after_kb;
+    double limit;
+
+    double change() const { return before_kb > 0 ? double(after_kb - before_kb) / before_kb : 0; }
+    /// A fall passes: only growth is a leak's signature.
+    bool within() const { return change() <= limit; }
+    std::string describe() const {
+        char text[96];
+        std::snprintf(text, sizeof text, "%ld -> %ld kB (%+.2f %%, limit +%.0f %%, %s)", before_kb, after_kb, 100 * change(),
+                      100 * limit, within() ? "flat" : "GREW");
+        return text;
+    }
+};
+
+/// The live heap's smallest sample over the tenth of the run after the baseline step and over the
+/// last tenth (each window holds at least its end sample).
+class HeapFloors {
+public:
+    explicit HeapFloors(const Args& a)
+        : baseline_(a.baseline), early_end_(a.baseline + (a.steps - a.baseline) / 10),
+          late_begin_(a.steps - (a.steps - a.baseline) / 10) {}
+
+    void add(long step, long heap_kb) {
+        if (step >= baseline_ && step <= early_end_) early_ = std::min(early_, heap_kb);
+        if (step >= late_begin_) late_ = std::min(late_, heap_kb);
+    }
+    Growth growth() const { return {early_, late_, kHeapGrowthLimit}; }
+
+private:
+    long baseline_, early_end_, late_begin_;
+    long early_ = std::numeric_limits<long>::max(), late_ = std::numeric_limits<long>::max();
+};
 
 /// Runs one scene for a.steps steps; prints its verdict and returns whether it passed.
 bool soak(const std::string& name, const Args& a, std::ofstream* csv) {
@@ -154,6 +206,7 @@ bool soak(const std::string& name, const Args& a, std::ofstream* csv) {
     scene->build(w);
     const Clock::time_point start = Clock::now();
     Sample baseline, s;
+    HeapFloors heap_floors(a);
     bool finite = true;
     dMLCPStepStats last{};
     for (long step = 1; step <= a.steps; ++step) {
@@ -171,20 +224,21 @@ bool soak(const std::string& name, const Args& a, std::ofstream* csv) {
         finite = finite && stepped && s.non_finite == 0;
         if (!finite) break;
         if (step == a.baseline) baseline = s;
+        heap_floors.add(step, s.memory.heap_kb);
         s.window_max_rows = 0;
     }
     const bool reached = finite && s.step == a.steps;
     const bool fallbacks_flat = reached && s.total.fallbacks == baseline.total.fallbacks;
-    const double rss_change = baseline.memory.rss_kb > 0 ? double(s.memory.rss_kb - baseline.memory.rss_kb) / baseline.memory.rss_kb : 0;
-    const bool memory_flat = reached && std::abs(rss_change) <= kRssTolerance;
-    std::printf("%s/%s: %s: %ld steps, finite %s; fallbacks %lld at step %ld, %lld at step %ld (%s); RSS %ld kB at step %ld, "
-                "%ld kB at step %ld (%+.2f %%, %s)\n",
-                name.c_str(), a.solver.c_str(), reached && fallbacks_flat && memory_flat ? "PASS" : "FAIL", s.step,
-                finite ? "yes" : "NO", static_cast<long long>(baseline.total.fallbacks), a.baseline,
-                static_cast<long long>(s.total.fallbacks), s.step, fallbacks_flat ? "flat" : "GREW", baseline.memory.rss_kb,
-                a.baseline, s.memory.rss_kb, s.step, 100 * rss_change, memory_flat ? "flat" : "GREW");
+    const Growth heap = heap_floors.growth();
+    const Growth rss{baseline.memory.rss_kb, s.memory.rss_kb, kRssGrowthLimit};
+    const bool passed = reached && fallbacks_flat && heap.within() && rss.within();
+    std::printf("%s/%s: %s: %ld steps, finite %s; fallbacks %lld at step %ld, %lld at step %ld (%s); heap floor %s; RSS %s "
+                "(from step %ld to %ld)\n",
+                name.c_str(), a.solver.c_str(), passed ? "PASS" : "FAIL", s.step, finite ? "yes" : "NO",
+                static_cast<long long>(baseline.total.fallbacks), a.baseline, static_cast<long long>(s.total.fallbacks), s.step,
+                fallbacks_flat ? "flat" : "GREW", heap.describe().c_str(), rss.describe().c_str(), a.baseline, s.step);
     std::fflush(stdout);
-    return reached && fallbacks_flat && memory_flat;
+    return passed;
 }
 
 }  // namespace

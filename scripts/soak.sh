@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Soak: each of the paper's scenes and each pile, stepped for 100,000 steps (about 28 minutes of
 # simulated time) with bpp, one process per scene, watching what must not drift: every body stays
-# finite, no island goes to ODE's Dantzig after the baseline step (10,000), and the process's
-# resident memory (RSS) at the last step is within 1 % of its RSS at the baseline step.
+# finite, no island goes to ODE's Dantzig after the baseline step (10,000), and the process's memory
+# does not grow from the baseline step to the last: live heap bytes by at most 1 %, RSS by at most
+# 5 % (demos/ode-bpp-soak.cpp and docs/soak.md say why two measures).
 #
 # Usage: scripts/soak.sh BUILD_DIR OUT_DIR [--steps N] [--baseline STEP] [--every K] [--solver NAME]
 #                        [--scenes "crane winch ..."]
-# Writes OUT_DIR/soak.csv (a row per scene every K steps: RSS, its peak, fallbacks, largest island,
-# wall time), OUT_DIR/logs/SCENE.txt and OUT_DIR/report.md. Progress lines go to the terminal.
+# Writes OUT_DIR/soak.csv (a row per scene every K steps: live heap, RSS, its peak, fallbacks,
+# largest island, wall time), OUT_DIR/logs/SCENE.txt and OUT_DIR/report.md. Progress lines go to the terminal.
 # Exit status: 0 when every scene passed, 1 when one did not, 2 on bad usage.
 set -euo pipefail
 
@@ -64,23 +65,35 @@ done
        "machine: $(nproc) cores; wall time $(( $(date +%s) - START )) s"
   echo
   echo "Each scene runs in its own process (\`ode-bpp-soak\`). Passes when every body stays finite, the"
-  echo "fallback count at the last step equals the count at step $BASELINE, and RSS at the last step is"
-  echo "within 1 % of RSS at step $BASELINE."
+  echo "fallback count at the last step equals the count at step $BASELINE, and memory does not grow: the"
+  echo "floor of the live heap (its smallest sample) over the last tenth of the run at most 1 % above its"
+  echo "floor over the tenth after step $BASELINE, and RSS at the last step at most 5 % above step $BASELINE's"
+  echo "(docs/soak.md says why). Verdicts and heap floors are the tool's own."
   echo
-  echo "| scene | steps | fallbacks at $BASELINE | fallbacks at end | RSS at $BASELINE [kB] | RSS at end [kB] | change | peak RSS [kB] | largest island | wall [s] | verdict |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|"
-  awk -F, -v baseline="$BASELINE" '
-    NR == 1 { next }
+  echo "| scene | steps | fallbacks at $BASELINE | fallbacks at end | heap floor [kB] | change | RSS at $BASELINE [kB] | RSS at end [kB] | change | peak RSS [kB] | largest island | wall [s] | verdict |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  awk -F, -v baseline="$BASELINE" -v solver="$SOLVER" '
+    function change(from, to) { return from > 0 ? 100 * (to - from) / from : 0 }
+    FILENAME != ARGV[1] {
+      split($0, words, ": "); key = words[1]; verdict[key] = words[2]
+      if (match($0, /heap floor [0-9]+ -> [0-9]+ kB \([^%]*%/)) {
+        split(substr($0, RSTART + 11, RLENGTH - 11), t, " "); sub(/^\(/, "", t[5])
+        floor[key] = t[1] " -> " t[3]; floor_change[key] = t[5] " %"
+      }
+      next
+    }
+    FNR == 1 { next }
     { scene = $1; last[scene] = $0; if ($3 == baseline) base[scene] = $0; if ($8 > rows[scene]) rows[scene] = $8
       if (!(scene in order)) { order[scene] = ++n; names[n] = scene } }
     END {
       for (k = 1; k <= n; ++k) {
-        s = names[k]; split(last[s], e, ","); split(base[s], b, ",")
-        change = (b[5] > 0) ? 100 * (e[5] - b[5]) / b[5] : 0
-        ok = (e[11] == 0 && b[9] == e[9] && change <= 1 && change >= -1 && (s in base))
-        printf "| %s | %s | %s | %s | %s | %s | %+.2f %% | %s | %s | %.0f | %s |\n", s, e[3], b[9], e[9], b[5], e[5], change, e[6], rows[s], e[13], ok ? "pass" : "FAIL"
+        s = names[k]; split(last[s], e, ","); split(base[s], b, ","); key = s "/" solver
+        v = (key in verdict) ? verdict[key] : "no verdict"
+        printf "| %s | %s | %s | %s | %s | %s | %s | %s | %+.2f %% | %s | %s | %.0f | %s |\n", s, e[3], b[9], e[9],
+               (key in floor) ? floor[key] : "–", (key in floor) ? floor_change[key] : "–", b[5], e[5], change(b[5], e[5]),
+               e[6], rows[s], e[13], v
       }
-    }' "$CSV"
+    }' "$CSV" "$VERDICTS"
   echo
   echo "Verdicts as printed by the tool:"
   echo

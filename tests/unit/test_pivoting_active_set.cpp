@@ -29,13 +29,15 @@ namespace {
 const char* const kOverBudget[] = {"bin-frozen-over-budget-93.mlcp", "bin-frozen-over-budget-114.mlcp",
                                    "forwarder-frozen-over-budget-226.mlcp", "bin-frozen-over-budget-250.mlcp"};
 
-Result solve_captured(const std::string& name, bool active_set, int rescue_after = Tuning{}.rescue_after) {
+Result solve_captured(const std::string& name, bool active_set, int rescue_after = Tuning{}.rescue_after,
+                      int release_at_most = Tuning{}.active_set_release_at_most) {
     const ReadResult read = read_mlcp((io_test::data_dir() / "captured" / name).string());
     EXPECT_TRUE(read.ok) << read.error;
     Options o;  // Bpp, Frozen friction, a budget of 100
     o.dantzig_fallback = false;
     o.tuning.active_set = active_set;
     o.tuning.rescue_after = rescue_after;
+    o.tuning.active_set_release_at_most = release_at_most;
     o.tuning.rescue_after_moved_bounds_cold = std::min(o.tuning.rescue_after_moved_bounds_cold, rescue_after);
     std::vector<double> x(static_cast<std::size_t>(read.file.n));
     return solve(read.file.view(), o, x.data());
@@ -163,17 +165,22 @@ TEST(PivotingActiveSet, AgreesWithDantzigWhenItDoesMostOfTheWork) {
 
 // The captured tail islands: projecting the plain attempt's iterate onto the bounds pushes many
 // rows that belong free onto a bound; they leave T together (active_set.h), not one per step
-// (main before that took 41 and 36 active-set steps on these two).
+// (main before that took 41 and 36 active-set steps on these two). Released all at once they
+// take at most 20 and 24; at most 8 at once (the default, which halves a pile's steps at rest),
+// 25 and 21.
 TEST(PivotingActiveSet, FreesTheRowsTheProjectionTightenedTogether) {
     const struct {
         const char* name;
-        int max_steps;
-    } islands[] = {{"forwarder-frozen-over-budget-226.mlcp", 20}, {"bin-frozen-over-budget-93.mlcp", 24}};
+        int max_steps_all, max_steps_default;
+    } islands[] = {{"forwarder-frozen-over-budget-226.mlcp", 20, 25}, {"bin-frozen-over-budget-93.mlcp", 24, 24}};
     for (const auto& island : islands) {
-        const Result r = solve_captured(island.name, true);
-        EXPECT_EQ(r.status, Status::Converged) << island.name << ": " << r.message;
-        EXPECT_GT(r.pivoting.murty_pivots, 0) << island.name;
-        EXPECT_LE(r.pivoting.murty_pivots, island.max_steps) << island.name;
+        const Result all = solve_captured(island.name, true, Tuning{}.rescue_after, 0);
+        EXPECT_EQ(all.status, Status::Converged) << island.name << ": " << all.message;
+        EXPECT_GT(all.pivoting.murty_pivots, 0) << island.name;
+        EXPECT_LE(all.pivoting.murty_pivots, island.max_steps_all) << island.name;
+        const Result capped = solve_captured(island.name, true);
+        EXPECT_EQ(capped.status, Status::Converged) << island.name << ": " << capped.message;
+        EXPECT_LE(capped.pivoting.murty_pivots, island.max_steps_default) << island.name;
     }
 }
 
@@ -271,9 +278,11 @@ struct ActiveSetRun {
     PivotStats counters;
 };
 
-ActiveSetRun run_active_set(const pivoting::BoxedLcp& lcp, std::vector<double> start, int max_steps) {
+ActiveSetRun run_active_set(const pivoting::BoxedLcp& lcp, std::vector<double> start, int max_steps,
+                            int release_at_most = Tuning{}.active_set_release_at_most) {
     pivoting::PivotSettings settings;
     settings.max_pivots = max_steps;
+    settings.release_at_most = release_at_most;
     pivoting::ActiveSetWorkspace workspace;
     pivoting::FreeRowsFactor factor;
     ActiveSetRun run{LoopOutcome::Breakdown, std::vector<RowState>(start.size(), RowState::Free), std::move(start), {}};
@@ -325,6 +334,33 @@ TEST(PivotingActiveSet, EveryStartEndsAtTheOneSolution) {
                 EXPECT_LT(problems::max_abs_diff(r.x, first), tol) << "cond " << cond << " seed " << seed << " start " << start;
             }
         }
+}
+
+// The most rows that left T in one step: the largest fall of |T| from one step to the next
+// (tight_per_step holds |T| as each step begins; a release ends its step).
+int largest_release(const PivotStats& counters) {
+    int largest = 0;
+    for (std::size_t k = 1; k < counters.tight_per_step.size(); ++k)
+        largest = std::max(largest, counters.tight_per_step[k - 1] - counters.tight_per_step[k]);
+    return largest;
+}
+
+// From a start that projection pushes onto wrong bounds, a release frees at most
+// release_at_most rows (0: every wrong-sign row at once); each cap ends at the one minimizer.
+TEST(PivotingActiveSet, ReleasesAtMostItsCapOfRowsAtOnce) {
+    const auto p = problems::random_boxed_mlcp(40, 4, 8, 1e2, 3);
+    const DriverLcp d(p);
+    const std::vector<double> x0(static_cast<std::size_t>(p.n), 1e3);
+    const ActiveSetRun all = run_active_set(d.lcp, x0, 20 * p.n, 0);
+    ASSERT_EQ(all.outcome, LoopOutcome::Converged);
+    ASSERT_GT(largest_release(all.counters), 3) << "the start must leave several wrong-sign rows at once";
+    for (int cap : {1, 3}) {
+        const ActiveSetRun r = run_active_set(d.lcp, x0, 20 * p.n, cap);
+        ASSERT_EQ(r.outcome, LoopOutcome::Converged) << "cap " << cap;
+        EXPECT_LE(largest_release(r.counters), cap);
+        EXPECT_LE(kkt_violation(d.lcp, r.x), 10 * Options{}.tolerance) << "cap " << cap;
+        EXPECT_LT(problems::max_abs_diff(r.x, all.x), 1e-9 * (1 + problems::inf_norm(all.x))) << "cap " << cap;
+    }
 }
 
 // Cut short, it hands back the index set and x it was given.

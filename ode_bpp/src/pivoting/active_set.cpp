@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 #include "pivoting/classify_row.h"
@@ -21,6 +22,7 @@ struct ActiveSetBuffers {
     Infeasibility inf;
     std::vector<std::pair<int, RowState>> reached;  ///< free rows a step took onto a bound
     std::vector<std::pair<int, RowState>> released;  ///< tight rows the latest release freed
+    std::vector<int> to_release;                     ///< positions in inf of the rows a release frees
     std::vector<double> direction, curvature;       ///< d and (A + shift I) d of a bent step
 };
 template class KeptBuffers<ActiveSetBuffers>;
@@ -115,23 +117,40 @@ private:
         return LoopOutcome::Converged;
     }
 
-    /// Frees every tight row whose multiplier has the wrong sign (ws_.inf at a face's minimizer),
-    /// the most violated first, so that it is ws_.released[0]; a row that would break the factor
-    /// down stays tight. False when the most violated one does (nothing freed then).
+    /// Frees the tight rows whose multipliers have the wrong sign (ws_.inf at a face's minimizer),
+    /// the most violated first, so that it is ws_.released[0], then the next most violated up to
+    /// settings.release_at_most in all; a row that would break the factor down stays tight. False
+    /// when the most violated one does (nothing freed then).
     bool release(std::vector<RowState>& states) {
         ws_.released.clear();
-        const int first = most_violated(ws_.inf);
-        for (int k = -1; k < ws_.inf.count(); ++k) {
-            if (k == first) continue;
-            const int i = ws_.inf.rows[k < 0 ? first : k];  // a tight row: free rows are feasible
+        choose_releases();
+        for (std::size_t k = 0; k < ws_.to_release.size(); ++k) {
+            const int i = ws_.inf.rows[ws_.to_release[k]];  // a tight row: free rows are feasible
             if (!factor_.add(i)) {
-                if (k < 0) return false;
+                if (k == 0) return false;
                 continue;
             }
             ws_.released.emplace_back(i, states[i]);
             states[i] = RowState::Free;
         }
         return true;
+    }
+
+    /// ws_.to_release: the most violated row of ws_.inf, then the release_at_most - 1 next by
+    /// excess, these in ascending row order (so that a cap above the count frees what releasing
+    /// every row frees, in the same order, to the bit).
+    void choose_releases() {
+        std::vector<int>& chosen = ws_.to_release;
+        chosen.resize(static_cast<std::size_t>(ws_.inf.count()));
+        std::iota(chosen.begin(), chosen.end(), 0);
+        std::swap(chosen[0], chosen[static_cast<std::size_t>(most_violated(ws_.inf))]);
+        const int cap = settings_.release_at_most;
+        if (cap > 0 && cap < ws_.inf.count()) {
+            const auto by_excess = [&](int a, int b) { return ws_.inf.excess[a] > ws_.inf.excess[b]; };
+            if (cap > 1) std::nth_element(chosen.begin() + 1, chosen.begin() + (cap - 1), chosen.end(), by_excess);
+            chosen.resize(static_cast<std::size_t>(cap));
+        }
+        std::sort(chosen.begin() + 1, chosen.end());
     }
 
     /// The first step after a release of several rows (active_set.h). If x* moves every released

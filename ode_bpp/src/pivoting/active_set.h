@@ -10,8 +10,10 @@
 // feasible, the tight rows T at their bounds and every free row strictly inside its bounds:
 //  - x* = the minimizer of q over the face {x_T fixed}: Eq. 6 with the free set's factor;
 //  - if x* is within the bounds, x = x*; if every tight row's multiplier has the right sign
-//    (Eq. 4, classify_row.h) x solves the problem, otherwise every tight row with a wrong-sign
-//    multiplier leaves T (appended to the factor), the most violated first;
+//    (Eq. 4, classify_row.h) x solves the problem, otherwise the tight rows with wrong-sign
+//    multipliers leave T (appended to the factor), the most violated first and at most
+//    PivotSettings::release_at_most of them, the next most violated (released all at once, most
+//    of a pile's rows came back one step each: Tuning::active_set_release_at_most);
 //  - otherwise the ratio test: x moves along x* - x until the first free row reaches a bound,
 //    and that row joins T (one row removed from the factor).
 // The first step after several rows left T may bend: the released rows that the new x* does not

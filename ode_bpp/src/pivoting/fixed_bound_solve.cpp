@@ -148,6 +148,7 @@ PivotSettings FixedBoundSolver::settings(int budget) const {
     s.murty_after = std::max(0, options_.tuning.murty_after);
     s.tolerance = options_.tolerance;
     s.record_steps = options_.record_steps;
+    s.release_at_most = options_.tuning.active_set_release_at_most;
     s.answer = use_;
     return s;
 }

@@ -43,6 +43,9 @@ struct PivotSettings {
     /// wrong sign beyond the factor's accuracy and pivot on from there (pivot_loop.cpp, polish);
     /// the new answer replaces the first only if it converges too.
     bool polish = true;
+    /// The active set's release: most tight rows with wrong-sign multipliers freed at once
+    /// (Tuning::active_set_release_at_most); 0 or less: all.
+    int release_at_most = Tuning{}.active_set_release_at_most;
     AnswerUse answer = AnswerUse::Final;         ///< what the run's answer is for
 };
 

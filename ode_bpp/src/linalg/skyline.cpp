@@ -4,8 +4,6 @@
 #include <cassert>
 #include <utility>
 
-#include "linalg/resize_exact.h"
-
 namespace ode_bpp::linalg {
 
 namespace {
@@ -107,7 +105,7 @@ void SkylineMatrix::reshape(const SkylineShape& shape) {
     shape_.sky = shape.sky;
     shape_.colptr = shape.colptr;
     shape_.first_column = shape.first_column;
-    resize_exact(values_, static_cast<std::size_t>(shape_.size()));
+    values_.resize(static_cast<std::size_t>(shape_.size()));
 }
 
 void SkylineMatrix::copy_tail_from(const SkylineMatrix& other, int k0) {

@@ -6,7 +6,6 @@
 #include <cstring>
 #include <numeric>
 
-#include "linalg/resize_exact.h"
 #include "ordering/graph.h"
 #include "structure_rules.h"
 
@@ -177,11 +176,11 @@ void SymmetricRows::fill_rows(const std::vector<LowerEntry>& lower, ToNew to_new
     std::vector<int>& next = build_.next;
     rowptr_.assign(static_cast<std::size_t>(n_) + 1, 0);
     for (int i = 0; i < n_; ++i) rowptr_[i + 1] = rowptr_[i] + count[i];
-    resize_exact(col_, static_cast<std::size_t>(rowptr_[n_]));
-    resize_exact(val_, col_.size());
+    col_.resize(static_cast<std::size_t>(rowptr_[n_]));
+    val_.resize(col_.size());
     next.assign(rowptr_.begin(), rowptr_.end() - 1);
     std::vector<int>& positions = build_.positions;
-    resize_exact(positions, 2 * lower.size());
+    positions.resize(2 * lower.size());
     int* position = positions.data();
     for (const LowerEntry& e : lower) {
         const int r = to_new(e.row), c = to_new(e.col);
@@ -236,8 +235,8 @@ void SymmetricRows::permute_into(const std::vector<int>& perm, SymmetricRows& ou
         out.diag_[i] = diag_[perm[i]];
         out.rowptr_[i + 1] = out.rowptr_[i] + (row_end(perm[i]) - row_begin(perm[i]));
     }
-    resize_exact(out.col_, col_.size());
-    resize_exact(out.val_, val_.size());
+    out.col_.resize(col_.size());
+    out.val_.resize(val_.size());
     for (int i = 0; i < n_; ++i) {
         int dst = out.rowptr_[i];
         for (int k = row_begin(perm[i]); k < row_end(perm[i]); ++k, ++dst) {

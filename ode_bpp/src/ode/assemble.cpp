@@ -4,7 +4,6 @@
 #include <cassert>
 #include <vector>
 
-#include "linalg/resize_exact.h"
 #include "ode_bpp/ode.h"
 
 namespace ode_bpp::ode {
@@ -150,19 +149,6 @@ void find_couplings(const dMLCP& island, AssemblyBuffers& buffers, Couplings& ou
     }
 }
 
-/// The lower entries assemble_joints forms: each joint's rows against its own earlier rows and
-/// against every row of each joint it is coupled with. O(joints + couplings).
-std::size_t lower_entry_count(const dMLCP& island, const Couplings& couplings) {
-    std::size_t count = 0;
-    for (int pj = 0; pj < island.nj; ++pj) {
-        const auto m = static_cast<std::size_t>(island.joints[pj].m);
-        if (m > 0) count += m * (m - 1) / 2;
-        for (int k = couplings.first[pj]; k < couplings.first[pj + 1]; ++k)
-            count += m * static_cast<std::size_t>(island.joints[couplings.joint[k]].m);
-    }
-    return count;
-}
-
 /// Every joint's rows in turn, row by row with increasing columns: keep_lower(i, j, a) for each
 /// lower entry (j < i: the coupled joints' rows, then the joint's own earlier rows), then
 /// keep_diagonal(i, a).
@@ -245,8 +231,6 @@ void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuff
     find_couplings(island, buffers, buffers.couplings);
     std::vector<linalg::LowerEntry>& lower = buffers.lower;
     lower.clear();
-    const std::size_t entries = lower_entry_count(island, buffers.couplings);
-    linalg::reserve_exact(lower, entries);
     std::vector<double>& diagonal = buffers.diagonal;
     diagonal.resize(static_cast<std::size_t>(island.m));
     // an exact zero is kept too: the pattern is the joints' (see assemble.h)
@@ -260,7 +244,6 @@ void assemble_rows(const dMLCP& island, linalg::SymmetricRows& out, AssemblyBuff
     };
     const auto keep_diagonal = [&diagonal](int i, double a) { diagonal[i] = a; };
     assemble_joints(island, buffers.couplings, keep_lower, keep_diagonal);
-    assert(lower.size() == entries);
     if (order.empty()) out.assign_lower(diagonal, lower);
     else out.assign_lower(diagonal, lower, order);
     remember_pattern(out, order, buffers);

@@ -15,7 +15,6 @@
 
 #include "linalg/cost_model.h"
 #include "linalg/factor_error.h"
-#include "linalg/resize_exact.h"
 #include "linalg/row_delete.h"
 #include "linalg/skyline.h"
 #include "linalg/skyline_cholesky.h"
@@ -257,8 +256,7 @@ private:
         // resident memory then stops growing once its largest island has been met: make soak).
         // Only the values: the shape itself is copied by load_a_env, where A_env is used.
         std::vector<double>& a_env = s_.A_env.values();
-        if (a_env.size() < static_cast<std::size_t>(s_.shape.size()))
-            linalg::resize_exact(a_env, static_cast<std::size_t>(s_.shape.size()));
+        if (a_env.size() < static_cast<std::size_t>(s_.shape.size())) a_env.resize(static_cast<std::size_t>(s_.shape.size()));
         const bool a_env_wanted = s_.needed_a_env;
         s_.needed_a_env = false;
         a_env_loaded_ = false;

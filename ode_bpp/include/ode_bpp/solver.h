@@ -188,7 +188,8 @@ struct Tuning {
     /// least infeasible iterate: it terminates finitely, the rows with wrong-sign multipliers
     /// leaving the tight set several at a time and a ratio test keeping x within its bounds,
     /// each row added to or removed from a factor of A_FF kept on its envelope
-    /// (pivoting/active_set.h), before the regularization continuation. Islands of any size. Needs rescue_after > 0.
+    /// (pivoting/active_set.h), before the regularization continuation. Islands of any size.
+    /// Needs rescue_after > 0.
     bool active_set = true;
     /// Where a face's minimizer leaves tight rows with wrong-sign multipliers, the active set
     /// releases at most this many of them at once, the most violated (0 or less: all of them).

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <utility>
 
 #include "pivoting/classify_row.h"
@@ -136,20 +135,20 @@ private:
         return true;
     }
 
-    /// ws_.to_release: the most violated row of ws_.inf, then the release_at_most - 1 next by
-    /// excess, these in ascending row order (so that a cap above the count frees what releasing
-    /// every row frees, in the same order, to the bit).
+    /// ws_.to_release: the most violated row of ws_.inf, then the others in ascending row order
+    /// (as releasing every row frees them), or, where release_at_most is fewer, the
+    /// release_at_most - 1 next by excess, in that order too.
     void choose_releases() {
         std::vector<int>& chosen = ws_.to_release;
-        chosen.resize(static_cast<std::size_t>(ws_.inf.count()));
-        std::iota(chosen.begin(), chosen.end(), 0);
-        std::swap(chosen[0], chosen[static_cast<std::size_t>(most_violated(ws_.inf))]);
+        const int first = most_violated(ws_.inf);
+        chosen.assign(1, first);
+        for (int k = 0; k < ws_.inf.count(); ++k)
+            if (k != first) chosen.push_back(k);
         const int cap = settings_.release_at_most;
-        if (cap > 0 && cap < ws_.inf.count()) {
-            const auto by_excess = [&](int a, int b) { return ws_.inf.excess[a] > ws_.inf.excess[b]; };
-            if (cap > 1) std::nth_element(chosen.begin() + 1, chosen.begin() + (cap - 1), chosen.end(), by_excess);
-            chosen.resize(static_cast<std::size_t>(cap));
-        }
+        if (cap <= 0 || cap >= ws_.inf.count()) return;
+        const auto by_excess = [&](int a, int b) { return ws_.inf.excess[a] > ws_.inf.excess[b]; };
+        if (cap > 1) std::nth_element(chosen.begin() + 1, chosen.begin() + (cap - 1), chosen.end(), by_excess);
+        chosen.resize(static_cast<std::size_t>(cap));
         std::sort(chosen.begin() + 1, chosen.end());
     }
 

@@ -16,6 +16,10 @@
 #include "ode_bpp/io.h"
 #include "ode_bpp/solver.h"
 #include "pivoting/active_set.h"
+#include "pivoting/fixed_bound_solve.h"
+#include "pivoting/free_solver.h"
+#include "pivoting/friction_policy.h"
+#include "pivoting/strategies.h"
 #include "problems/generators.h"
 #include "problems/vectors.h"
 #include "test_io_support.h"
@@ -360,6 +364,38 @@ TEST(PivotingActiveSet, ReleasesAtMostItsCapOfRowsAtOnce) {
         EXPECT_LE(largest_release(r.counters), cap);
         EXPECT_LE(kkt_violation(d.lcp, r.x), 10 * Options{}.tolerance) << "cap " << cap;
         EXPECT_LT(problems::max_abs_diff(r.x, all.x), 1e-9 * (1 + problems::inf_norm(all.x))) << "cap " << cap;
+    }
+}
+
+// A fixed-bound solve keeps the active set's factor storage for the stage's next run up to
+// Tuning::active_set_kept_factor_bytes (fresh pages cost a fault each on first touch), and gives
+// a larger one back to the system (0: every one).
+TEST(PivotingActiveSet, KeepsItsFactorsStorageUpToItsBoundForTheNextRun) {
+    const auto owned = problems::chain_mlcp(30, 20);
+    const Problem p = owned.view();
+    for (const std::size_t kept : {Tuning{}.active_set_kept_factor_bytes, std::size_t{0}}) {
+        Options o;
+        o.tuning.rescue_after_moved_bounds_cold = 1;  // the active set takes the second solve over
+        o.tuning.active_set_kept_factor_bytes = kept;
+        DriverLcp d(p);
+        pivoting::StrategyBuffers strategy;
+        const auto solver = pivoting::make_free_solver(Method::Bpp, d.A, strategy);
+        ASSERT_NE(solver, nullptr);
+        PivotStats counters;
+        pivoting::FixedBoundBuffers buffers;
+        pivoting::FixedBoundSolver fixed(d.lcp, *solver, o, d.A.max_diag(), counters, buffers, /*warm=*/false);
+        std::vector<RowState> states(static_cast<std::size_t>(p.n), RowState::Free);
+        std::vector<double> x;
+        ASSERT_EQ(pivoting::solve_frozen(fixed, d.lcp, d.friction, o.max_pivots, pivoting::SecondStart::Requested,
+                                         states, x),
+                  pivoting::PolicyOutcome::Converged);
+        ASSERT_GT(counters.update_steps, 0) << "the active set did not run";
+        if (kept > 0) {
+            EXPECT_GT(buffers.free_rows.storage_bytes(), 0u) << "given back";
+            EXPECT_LE(buffers.free_rows.storage_bytes(), kept);
+        } else {
+            EXPECT_EQ(buffers.free_rows.storage_bytes(), 0u) << "kept above its bound";
+        }
     }
 }
 

@@ -11,6 +11,7 @@
 
 #include "ode_bpp/export.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -199,6 +200,14 @@ struct Tuning {
     /// instructions and takes 30 % off a rock pile's, within -2.3 % to +0.3 % on the paper
     /// scenes (docs/tuning.md).
     int active_set_release_at_most = 8;
+    /// The active set's factor (its L_FF on the envelope) keeps its storage for the next run up
+    /// to this many bytes, as the workspace keeps its other buffers; a larger one goes back to the
+    /// system after its run (0: after every run). Fresh storage costs a page fault per page on
+    /// first touch, and the paper scenes run the stage often (the forwarder about twice a step)
+    /// with factors of at most 180 kB: kept, parkour's mean step inside ODE fell 12-15 % and its
+    /// slowest 1 % 27 % (docs/tuning.md). The bound keeps a pile's rarer large factor (up to
+    /// 0.9 MB on the pyramid's 984 rows) from staying resident.
+    std::size_t active_set_kept_factor_bytes = std::size_t{256} << 10;
     /// Consistent friction: most outer bound updates, damped (new = (1-d)*old + d*target).
     int max_friction_rounds = 100;
     /// d of those updates, in (0, 1] (1: no damping); outside it solve() answers InvalidInput.

@@ -79,6 +79,8 @@ public:
     /// Gives the factor's storage back (a large one to the system at once, page_array.h): the
     /// next append allocates afresh. Empties S.
     void release();
+    /// Bytes of the entries' storage now held (its capacity, not its use).
+    std::size_t storage_bytes() const { return L_.capacity() * sizeof(double); }
 
 private:
     /// L(i, first(i)) .. L(i, i), contiguous.

@@ -63,13 +63,13 @@ LoopOutcome FixedBoundSolver::at_target(std::vector<RowState>& states, std::vect
 /// The active-set method from x, the plain loop's least infeasible iterate (active_set.h), which
 /// classifies its answer on w = (A + shift I)x - b itself and polishes it as the plain loop would.
 /// Converged, MaxIterations or Breakdown; states and x as they came in unless Converged. The
-/// factor's storage is given back after each run (page_array.h): faulting its pages in again costs less
-/// than keeping them resident between rare large runs.
+/// factor keeps its storage for the next run unless it holds more than
+/// Tuning::active_set_kept_factor_bytes.
 LoopOutcome FixedBoundSolver::by_active_set(std::vector<RowState>& states, std::vector<double>& x) {
     const int max_steps = tuning::kActiveSetStepsPerRow * lcp_.n() + tuning::kActiveSetStepsExtra;
     const LoopOutcome outcome = active_set(lcp_, settings(max_steps), states, x, counters_, buffers_.active_set,
                                            buffers_.free_rows, solver_.latest_factor());
-    buffers_.free_rows.release();
+    if (buffers_.free_rows.storage_bytes() > options_.tuning.active_set_kept_factor_bytes) buffers_.free_rows.release();
     return outcome;
 }
 

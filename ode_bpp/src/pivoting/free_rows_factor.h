@@ -55,6 +55,8 @@ public:
     /// then on a large island does not keep its factor resident for the rest of the run. The
     /// next reset() allocates afresh.
     void release() { factor_.release(); }
+    /// Bytes of the factor's storage now held (IncrementalCholesky::storage_bytes).
+    std::size_t storage_bytes() const { return factor_.storage_bytes(); }
 
 private:
     void add_column(int i, double factor);  ///< tight_product_ += factor A(:, i), off the diagonal

@@ -172,8 +172,8 @@ namespace {
 /// per row over its envelope, then Lᵀ x = y, row i of L being column i of Lᵀ, by an axpy per
 /// row. On x86-64 also compiled for AVX2 (kernel_clones.h): the same bits.
 KERNEL_FOR_AVX2_TOO
-void solve_packed(const double* L, const std::size_t* start, const int* first_col, const double* inverse, int n,
-                  double* x) {
+void solve_packed(const double* __restrict L, const std::size_t* start, const int* first_col, const double* inverse,
+                  int n, double* __restrict x) {
     for (int i = 0; i < n; ++i) {
         const int f = first_col[i];
         const double* Li = L + start[i];

@@ -63,6 +63,24 @@ TEST(LinalgPageArray, MovingTransfersTheStorage) {
     EXPECT_EQ(c.data()[7], 3.5);
 }
 
+/// Resident bytes a run under AddressSanitizer keeps after `bytes` were mapped, touched and
+/// unmapped: its shadow of the range, one byte per eight, which stays resident (measured on the
+/// test machine: 1.09 MB after 8 MB). None otherwise. A range that stayed resident itself still
+/// fails the test by far.
+constexpr std::size_t sanitizer_shadow(std::size_t bytes) {
+#if defined(__SANITIZE_ADDRESS__)
+    return bytes / 8;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+    return bytes / 8;
+#else
+    return 0 * bytes;
+#endif
+#else
+    return 0 * bytes;
+#endif
+}
+
 /// Allocates and frees `bytes` through malloc: glibc then serves blocks up to that size from its
 /// heap, which it keeps resident after they are freed (its mmap threshold follows freed blocks).
 /// Returns the byte it wrote (1); the block's address escapes through a volatile pointer, so the
@@ -85,7 +103,7 @@ TEST(LinalgPageArray, ReleaseReturnsTheResidentMemory) {
     a.release();
     const long after = resident_bytes();
     EXPECT_GT(touched - before, static_cast<long>(kBytes * 9 / 10));
-    EXPECT_LT(after - before, static_cast<long>(kBytes / 10)) << "the pages stayed resident";
+    EXPECT_LT(after - before, static_cast<long>(kBytes / 10 + sanitizer_shadow(kBytes))) << "the pages stayed resident";
 }
 
 TEST(LinalgIncrementalCholesky, SolvesAfterItsStorageWasReleased) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -56,6 +57,26 @@ TEST(PivotingActiveSet, FinishesTheCapturedIslandsThatRanOutOfBudget) {
         EXPECT_GT(r.pivoting.murty_pivots, 0) << name;
         EXPECT_LE(r.residuals.scaled_fixed_bound, certification_level(Options{}.tolerance)) << name;
     }
+}
+
+// The active set reads the free rows' w only to check its updated factor, and checks it where
+// its answer would be accepted: on this winch island (CFM 1e-10, from the warm start it was
+// solved from inside ODE) the updates leave the factor short of Eq. 6's accuracy there, it is
+// rebuilt, and the answer is the fresh factor's.
+TEST(PivotingActiveSet, ChecksItsUpdatedFactorWhereItsAnswerWouldBeAccepted) {
+    const ReadResult read = read_mlcp((io_test::data_dir() / "captured" / "winch-worn-active-set-factor-336.mlcp").string());
+    ASSERT_TRUE(read.ok) << read.error;
+    std::string error;
+    const std::optional<Start> start = start_from_metadata(read.file.meta, read.file.n, &error);
+    ASSERT_TRUE(start.has_value()) << error;
+    Options o;
+    o.dantzig_fallback = false;
+    std::vector<double> x(static_cast<std::size_t>(read.file.n));
+    const Result r = solve(read.file.view(), o, x.data(), *start);
+    ASSERT_EQ(r.status, Status::Converged) << r.message;
+    EXPECT_GT(r.pivoting.update_steps, 0) << "the active set did not run";
+    EXPECT_GE(r.pivoting.accuracy_refactors, 1) << "the worn factor's answer was accepted unchecked";
+    EXPECT_LE(r.residuals.scaled_fixed_bound, certification_level(o.tolerance));
 }
 
 TEST(PivotingActiveSet, WithoutItTheSameIslandsRunOutOfBudget) {

@@ -143,6 +143,38 @@ TEST(PivotingFreeRowsFactor, RefactorsInIncreasingIndexOnceRowsJoiningOutOfOrder
     EXPECT_TRUE(reordered);
 }
 
+// updates() counts the rows that joined or left F since the factor was built: 0 after a reset, a
+// refresh, and an add that refactored in increasing index (the active set checks an updated
+// factor's accuracy only).
+TEST(PivotingFreeRowsFactor, CountsItsUpdatesSinceItWasBuilt) {
+    std::mt19937 rng(24);
+    const int n = 80;
+    const Fixture f(n, 3, 0.0, rng);
+    std::vector<RowState> states(static_cast<std::size_t>(n), RowState::Free);
+    std::vector<double> x(static_cast<std::size_t>(n), 0.0);
+    for (int i = 1; i < n; i += 2) {
+        states[i] = RowState::AtHi;
+        x[i] = 0.5;
+    }
+    FreeRowsFactor factor;
+    ASSERT_TRUE(factor.reset(f.lcp, states, x));
+    EXPECT_EQ(factor.updates(), 0);
+    factor.remove(0, 0.25);
+    EXPECT_EQ(factor.updates(), 1);
+    ASSERT_TRUE(factor.add(n - 1));
+    EXPECT_EQ(factor.updates(), 2);
+    ASSERT_TRUE(factor.refresh());
+    EXPECT_EQ(factor.updates(), 0);
+    bool reordered = false;  // rows joining last to first widen the envelope until F is refactored
+    for (int i = n - 3; i > 0 && !reordered; i -= 2) {
+        const int before = factor.updates();
+        ASSERT_TRUE(factor.add(i));
+        reordered = factor.members().back() != i;
+        EXPECT_EQ(factor.updates(), reordered ? 0 : before + 1);
+    }
+    EXPECT_TRUE(reordered);
+}
+
 /// A skyline factor of A + shift I with the rows of seed_tight removed (the pivoting loop's L), and
 /// those rows.
 struct Seed {

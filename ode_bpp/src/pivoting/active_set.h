@@ -35,7 +35,11 @@
 // finitely many faces. Rows that may not be tight (BoxedLcp::always_free, infinite bounds) never
 // join T; pinned rows (lo = hi) never leave it.
 // Each step costs one solve with the free set's factor and one row update per row that changes
-// set, at most O(|F|²) each (free_rows_factor.h), like one of ODE's Dantzig pivots; it starts from a given iterate
+// set, at most O(|F|²) each (free_rows_factor.h), like one of ODE's Dantzig pivots; at a face's
+// minimizer, w on the tight rows (the rows of A that Eq. 4 reads there), and on the free rows
+// only where the updated factor's accuracy is checked: where its x* would be the answer, and
+// every few minima on the way (tuning::kActiveSetUncheckedMinima; a factor that fails is
+// rebuilt and the face's minimizer solved again from x*, which is feasible); it starts from a given iterate
 // projected onto the bounds, so a good start (the pivoting loop's least infeasible iterate)
 // leaves only the rows whose state is wrong there.
 //

@@ -56,6 +56,7 @@ bool FreeRowsFactor::reset(const BoxedLcp& lcp, const std::vector<RowState>& sta
     for (int i = 0; i < lcp.n(); ++i)
         if (states[i] == RowState::Free && position_[i] < 0 && !append_row(i)) return false;
     refreshed_entries_ = factor_.stored_entries();
+    updates_ = 0;
     return true;
 }
 
@@ -121,11 +122,13 @@ bool FreeRowsFactor::refresh() {
     for (int i : refresh_rows_)
         if (!append_row(i)) return false;
     refreshed_entries_ = factor_.stored_entries();
+    updates_ = 0;
     return true;
 }
 
 bool FreeRowsFactor::add(int i) {
     if (!append_row(i)) return false;
+    ++updates_;
     const std::size_t rows = static_cast<std::size_t>(lcp_->n());
     if (factor_.stored_entries() > kReorderGrowth * std::max(refreshed_entries_, rows)) return refresh();
     return true;
@@ -154,6 +157,7 @@ bool FreeRowsFactor::append_row(int i) {
 
 void FreeRowsFactor::remove(int i, double value) {
     drop(position_[i]);
+    ++updates_;
     tight_x_[i] = value;
     if (value != 0) add_column(i, value);
 }

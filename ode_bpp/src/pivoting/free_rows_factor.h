@@ -42,6 +42,9 @@ public:
     void remove(int i, double value);
     /// F in the factor's order.
     const std::vector<int>& members() const { return members_; }
+    /// Rows added to or removed from F since the factor was last built (reset, refresh, or an
+    /// add that refactored): 0 for a fresh factor, whose solves meet Eq. 6 to about n eps.
+    int updates() const { return updates_; }
 
     /// Eq. 6: x_F = (A + shift I)_FF⁻¹ (b - A_FT x_T)_F with the tight values x_T given to
     /// reset() and remove(); x's other entries are left as they are.
@@ -79,6 +82,7 @@ private:
     std::vector<char> seed_tight_;        ///< the seed's tight rows, flagged
     std::vector<int> seed_first_;         ///< load_seed's first recorded column (F position) of each member row
     std::size_t refreshed_entries_ = 0;   ///< the factor's stored entries after the last refresh()
+    int updates_ = 0;                     ///< updates()
     mutable std::vector<double> rhs_;
 };
 

@@ -46,6 +46,20 @@ void complete_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterat
     it.complete = true;
 }
 
+void refresh_tight_residual(const BoxedLcp& lcp, const std::vector<double>& x, const std::vector<RowState>& states,
+                            Iterate& it) {
+    const RowState* s = states.data();
+    refresh_rows(lcp, x, it, [s](int i) { return s[i] != RowState::Free; });
+    it.complete = false;
+}
+
+void refresh_free_residual(const BoxedLcp& lcp, const std::vector<double>& x, const std::vector<RowState>& states,
+                           Iterate& it) {
+    const RowState* s = states.data();
+    refresh_rows(lcp, x, it, [s](int i) { return s[i] == RowState::Free; });
+    it.complete = false;
+}
+
 void tight_columns_product(const linalg::SymmetricRows& A, const std::vector<char>& tight, const std::vector<double>& x,
                            std::vector<int>& columns, std::vector<double>& y) {
     const int n = A.n();

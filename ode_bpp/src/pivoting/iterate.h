@@ -37,6 +37,16 @@ void refresh_bounded_residual(const BoxedLcp& lcp, const std::vector<double>& x,
 /// guard) and the residuals of the answer.
 void complete_residual(const BoxedLcp& lcp, const std::vector<double>& x, Iterate& it);
 
+/// The same on the rows that `states` holds tight (at a bound) only, and on the free rows only:
+/// each row summed as refresh_residual sums it, so that both at one x give its vectors bit for
+/// bit. The active set (active_set.cpp) classifies Eq. 4 on its tight rows at every face
+/// minimizer, where its free rows lie strictly inside their bounds, and reads the free rows' w
+/// only to check its factor. Neither sets `complete`.
+void refresh_tight_residual(const BoxedLcp& lcp, const std::vector<double>& x, const std::vector<RowState>& states,
+                            Iterate& it);
+void refresh_free_residual(const BoxedLcp& lcp, const std::vector<double>& x, const std::vector<RowState>& states,
+                           Iterate& it);
+
 /// y_i = (A_FT x_T)_i on the free rows (tight[i] == 0; y's tight rows are not meaningful), Eq. 6's
 /// right-hand side without b: a pass over the rows of the tight columns with x_j != 0 only (A symmetric),
 /// O(n + their entries) instead of O(nnz). Each y_i adds its terms in the order row i of A lists

@@ -34,6 +34,9 @@ constexpr int kMurtyPatience = 2;
 /// what one island may cost.
 constexpr int kActiveSetStepsPerRow = 10;
 constexpr int kActiveSetStepsExtra = 50;
+/// Face minimizers an updated free-set factor may steer before its accuracy is checked (it always
+/// is where its answer would be accepted): active_set.cpp's wants_accuracy_check.
+constexpr int kActiveSetUncheckedMinima = 4;
 
 // ---- friction (friction_policy.h) --------------------------------------------------------------
 /// A linked solve (Consistent friction) may take this many times Options::max_pivots.

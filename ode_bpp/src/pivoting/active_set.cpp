@@ -64,7 +64,6 @@ public:
             x.swap(ws_.target);
             tighten_rows_on_bounds(states, x);
             refresh_tight_residual(lcp_, x, states, ws_.it);
-            free_w_current_ = false;
             classify_iterate(lcp_, ws_.it, states, x, settings_.tolerance, ws_.inf);
             const bool feasible = ws_.inf.count() == 0;
             if (updated && wants_accuracy_check(feasible) && !factor_accurate(states, x)) {
@@ -83,7 +82,8 @@ private:
     /// answer, and at every tuning::kActiveSetUncheckedMinima-th face minimizer on the way, so
     /// that wear from many updates does not steer the releases for long. A check costs the
     /// free rows' part of w (most of A's entries: F holds 75-85 % of the rows of the paper's
-    /// machines); the tight rows' part is what Eq. 4 reads anyway.
+    /// machines); the tight rows' part is what Eq. 4 reads anyway, and nothing else reads the
+    /// free rows' part (a bent step's slope: along_direction).
     bool wants_accuracy_check(bool feasible) {
         if (feasible || ++unchecked_minima_ >= tuning::kActiveSetUncheckedMinima) {
             unchecked_minima_ = 0;
@@ -94,15 +94,8 @@ private:
 
     /// Eq. 6 on F at the face's minimizer x (accuracy_limit): its free rows' w completed.
     bool factor_accurate(const std::vector<RowState>& states, const std::vector<double>& x) {
-        complete_free_rows(states, x);
-        return factor_.accurate(ws_.it, settings_.tolerance);
-    }
-
-    /// w and scale on the rows free in `states` at x, the point of the last classification.
-    void complete_free_rows(const std::vector<RowState>& states, const std::vector<double>& x) {
-        if (free_w_current_) return;
         refresh_free_residual(lcp_, x, states, ws_.it);
-        free_w_current_ = true;
+        return factor_.accurate(ws_.it, settings_.tolerance);
     }
 
     /// x onto [lo, hi]; a row on a bound after that starts tight there (so that every free row
@@ -180,7 +173,6 @@ private:
     /// stays released and x* is solved again for the face step (false).
     bool bent_step(std::vector<RowState>& states, std::vector<double>& x) {
         if (!direction_without_outward_releases(x)) return false;
-        complete_free_rows(states, x);  // g = w at x on F, released rows included
         const auto [slope, curvature] = along_direction();
         if (!(slope < 0) || !(curvature > 0)) {
             for (std::size_t k = 1; k < ws_.released.size(); ++k) retighten(ws_.released[k], states, x);
@@ -217,9 +209,12 @@ private:
     }
 
     /// g'd and d'(A + shift I)d for q(x + t d) = q(x) + t g'd + t²/2 d'(A + shift I)d, g = w at x.
+    /// x is the minimizer of the face before the release, where Eq. 6 makes g zero on that
+    /// face's free rows (to the factor's accuracy, which the checks bound): g'd sums the released
+    /// rows' terms, whose w was formed for Eq. 4, each negative (w of the wrong sign, d inwards).
     std::pair<double, double> along_direction() {
         double slope = 0;
-        for (int i : factor_.members()) slope += ws_.it.w[i] * ws_.direction[i];
+        for (const auto& released : ws_.released) slope += ws_.it.w[released.first] * ws_.direction[released.first];
         lcp_.A->multiply(ws_.direction, lcp_.shift, ws_.curvature);
         double curvature = 0;
         for (int i : factor_.members()) curvature += ws_.direction[i] * ws_.curvature[i];
@@ -297,7 +292,6 @@ private:
     ActiveSetBuffers& ws_;
     FreeRowsFactor& factor_;
     const int n_;
-    bool free_w_current_ = false;  ///< ws_.it holds the free rows' w at the last classified x too
     int unchecked_minima_ = 0;     ///< face minimizers since the updated factor was last checked
 };
 

@@ -1,7 +1,7 @@
 // IncrementalCholesky: after any sequence of appends (in increasing index or out of order) and
 // removals (first, last, middle or random positions), the factor is the Cholesky factor of M_SS in
 // S's order (against Eigen's LLT of M_SS gathered afresh, and L Lᵀ reconstructed from the
-// factor's own entries), solve() is M_SS⁻¹, the recorded envelope holds every non-zero of that
+// factor's own entries), solve() is M_SS⁻¹, quadratic_form() is vᵀ M_SS v, the recorded envelope holds every non-zero of that
 // factor, and a dependent row is refused. Appends, removals and solves also give, bit for bit,
 // the row-at-a-time operations that incremental_cholesky.cpp documents (its dot products' four
 // partial sums included), so a faster kernel must keep them. Banded matrices (small envelopes)
@@ -111,6 +111,11 @@ void expect_solves(const linalg::IncrementalCholesky& f, const MatrixXd& M, cons
     f.solve(x.data());
     const double tol = 1e-10 * condition_number(M_SS) * (1 + expected.cwiseAbs().maxCoeff());
     for (int a = 0; a < m; ++a) EXPECT_NEAR(x[a], expected[a], tol) << "position " << a;
+    // quadratic_form is vᵀ M_SS v, to rounding in |v|ᵀ|M_SS||v|
+    std::vector<double> y(static_cast<std::size_t>(m), std::numeric_limits<double>::quiet_NaN());
+    const double form = rhs.dot(M_SS * rhs);
+    const double scale = rhs.cwiseAbs().dot(M_SS.cwiseAbs() * rhs.cwiseAbs());
+    EXPECT_NEAR(f.quadratic_form(rhs.data(), y.data()), form, 1e-12 * m * scale);
 }
 
 /// remove(p) on the dense factor L, one row at a time as incremental_cholesky.cpp documents it: row

@@ -195,6 +195,19 @@ void IncrementalCholesky::solve(double* x) const {
     solve_packed(L_.data(), start_.data(), first_.data(), inverse_pivot_.data(), size_, x);
 }
 
+double IncrementalCholesky::quadratic_form(const double* v, double* y) const {
+    std::fill(y, y + size_, 0.0);
+    for (int i = 0; i < size_; ++i) {  // row i of L is column i of Lᵀ: y += v_i L(i, :)
+        const int f = first_[static_cast<std::size_t>(i)];
+        const double* Li = row_entries(i);
+        const double vi = v[i];
+        for (int k = 0; k <= i - f; ++k) y[f + k] += Li[k] * vi;
+    }
+    double sum = 0;
+    for (int k = 0; k < size_; ++k) sum += y[k] * y[k];
+    return sum;
+}
+
 void IncrementalCholesky::release() {
     L_.release();
     size_ = 0;

@@ -68,6 +68,10 @@ public:
 
     /// x <- M_SS⁻¹ x, x: size() entries in S's order.
     void solve(double* x) const;
+    /// vᵀ M_SS v = |Lᵀ v|² (M_SS = L Lᵀ), v: size() entries in S's order (input); y: size()
+    /// entries of scratch (output: Lᵀ v). O(stored entries), without M: the curvature of a
+    /// quadratic along a direction within S.
+    double quadratic_form(const double* v, double* y) const;
 
     /// The first column of row i's recorded envelope (0 <= i < size()): L(i, k) = 0 for k < first(i).
     int first(int i) const { return first_[static_cast<std::size_t>(i)]; }

@@ -22,7 +22,7 @@ struct ActiveSetBuffers {
     std::vector<std::pair<int, RowState>> reached;  ///< free rows a step took onto a bound
     std::vector<std::pair<int, RowState>> released;  ///< tight rows the latest release freed
     std::vector<int> to_release;                     ///< positions in inf of the rows a release frees
-    std::vector<double> direction, curvature;       ///< d and (A + shift I) d of a bent step
+    std::vector<double> direction;                   ///< d of a bent step
 };
 template class KeptBuffers<ActiveSetBuffers>;
 
@@ -215,10 +215,7 @@ private:
     std::pair<double, double> along_direction() {
         double slope = 0;
         for (const auto& released : ws_.released) slope += ws_.it.w[released.first] * ws_.direction[released.first];
-        lcp_.A->multiply(ws_.direction, lcp_.shift, ws_.curvature);
-        double curvature = 0;
-        for (int i : factor_.members()) curvature += ws_.direction[i] * ws_.curvature[i];
-        return {slope, curvature};
+        return {slope, factor_.curvature(ws_.direction)};  // d lies in F, whose factor holds the released rows
     }
 
     /// A released row back to T at the bound it left.

@@ -18,7 +18,8 @@
 //    and that row joins T (one row removed from the factor).
 // The first step after several rows left T may bend: the released rows that the new x* does not
 // move strictly inwards rejoin T, and x moves along d = x* - x on the rest of F (d_i = 0 on the
-// re-tightened rows) to the minimum of q along d (one product with A), or to the first
+// re-tightened rows) to the minimum of q along d (its curvature d'(A + shift I)d = |Lᵀ d|² from
+// the free set's factor L), or to the first
 // bound on the way. d is a descent direction: x* minimizes q on the larger face, so g'(x* - x) < 0
 // at x (not that face's minimizer), and each dropped term g_i d_i is > 0 (g_i = w_i has the wrong
 // sign, d_i points outwards), so g'd < 0 too. x minimizes the face before the release, so g is
@@ -42,7 +43,7 @@
 // only where the updated factor's accuracy is checked: where its x* would be the answer, and
 // every few minima on the way (tuning::kActiveSetUncheckedMinima; a factor that fails is
 // rebuilt and the face's minimizer solved again from x*, which is feasible); a bent step adds
-// one product with A; it starts from a given iterate
+// a product with the factor; it starts from a given iterate
 // projected onto the bounds, so a good start (the pivoting loop's least infeasible iterate)
 // leaves only the rows whose state is wrong there.
 //

@@ -186,6 +186,14 @@ void FreeRowsFactor::solve(std::vector<double>& x) const {
     for (int p = 0; p < m; ++p) x[members_[p]] = rhs_[p];
 }
 
+double FreeRowsFactor::curvature(const std::vector<double>& d) const {
+    const int m = factor_.size();
+    rhs_.resize(static_cast<std::size_t>(m));
+    transformed_.resize(static_cast<std::size_t>(m));
+    for (int p = 0; p < m; ++p) rhs_[p] = d[members_[p]];
+    return factor_.quadratic_form(rhs_.data(), transformed_.data());
+}
+
 bool FreeRowsFactor::accurate(const Iterate& it, double tolerance) const {
     double worst = 0;
     for (int i : members_)

@@ -49,6 +49,9 @@ public:
     /// Eq. 6: x_F = (A + shift I)_FF⁻¹ (b - A_FT x_T)_F with the tight values x_T given to
     /// reset() and remove(); x's other entries are left as they are.
     void solve(std::vector<double>& x) const;
+    /// dᵀ (A + shift I)_FF d for d: n entries, 0 off F (only its F entries are read), from the
+    /// factor (IncrementalCholesky::quadratic_form): O(its entries), no product with A.
+    double curvature(const std::vector<double>& d) const;
     /// True when w and scales at a solve()'s x (`it`, iterate.h) meet Eq. 6 on F within
     /// accuracy_limit(tolerance, n); false after many updates have worn the factor.
     bool accurate(const Iterate& it, double tolerance) const;
@@ -86,6 +89,7 @@ private:
     std::size_t refreshed_entries_ = 0;   ///< the factor's stored entries after the last refresh()
     int updates_ = 0;                     ///< updates()
     mutable std::vector<double> rhs_;
+    mutable std::vector<double> transformed_;  ///< curvature()'s Lᵀ d
 };
 
 }  // namespace ode_bpp::pivoting

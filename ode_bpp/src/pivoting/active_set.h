@@ -19,15 +19,14 @@
 // The first step after several rows left T may bend: the released rows that the new x* does not
 // move strictly inwards rejoin T, and x moves along d = x* - x on the rest of F (d_i = 0 on the
 // re-tightened rows) to the minimum of q along d (its curvature d'(A + shift I)d = |Lᵀ d|² from
-// the free set's factor L), or to the first
-// bound on the way. d is a descent direction: x* minimizes q on the larger face, so g'(x* - x) < 0
-// at x (not that face's minimizer), and each dropped term g_i d_i is > 0 (g_i = w_i has the wrong
-// sign, d_i points outwards), so g'd < 0 too. x minimizes the face before the release, so g is
-// zero on that face's free rows (Eq. 6, to the factor's accuracy) and g'd sums the released
-// rows' terms alone, each < 0. (Should rounding make g'd >= 0, only the most violated row stays
-// released, as in the single-row method.) On the captured tail islands this
-// frees the rows that projecting the start pushed onto a bound in a few steps instead of one
-// each (docs/tuning.md).
+// the free set's factor L), or to the first bound on the way. d is a descent direction: x*
+// minimizes q on the larger face, so g'(x* - x) < 0 at x (not that face's minimizer), and each
+// dropped term g_i d_i is > 0 (g_i = w_i has the wrong sign, d_i points outwards), so g'd < 0
+// too. x minimizes the face before the release, so g is zero on that face's free rows (Eq. 6, to
+// the factor's accuracy) and g'd sums the released rows' terms alone, each < 0. (Should rounding
+// make g'd >= 0, only the most violated row stays released, as in the single-row method.) On the
+// captured tail islands this frees the rows that projecting the start pushed onto a bound in a
+// few steps instead of one each (docs/tuning.md).
 // Why it terminates: q is convex along each segment and the step stops at or before the minimum
 // along it, so q never rises. After a release, the next step falls strictly: the face step moves
 // every released row strictly inwards (else it bends) and every other free row is strictly inside,
@@ -42,10 +41,10 @@
 // minimizer, w on the tight rows (the rows of A that Eq. 4 reads there), and on the free rows
 // only where the updated factor's accuracy is checked: where its x* would be the answer, and
 // every few minima on the way (tuning::kActiveSetUncheckedMinima; a factor that fails is
-// rebuilt and the face's minimizer solved again from x*, which is feasible); a bent step adds
-// a product with the factor; it starts from a given iterate
-// projected onto the bounds, so a good start (the pivoting loop's least infeasible iterate)
-// leaves only the rows whose state is wrong there.
+// rebuilt and the face's minimizer solved again from x*, which is feasible); a bent step adds a
+// product with the factor. It starts from a given iterate projected onto the bounds, so a good
+// start (the pivoting loop's least infeasible iterate) leaves only the rows whose state is wrong
+// there.
 //
 // Index space: the permuted space of the BoxedLcp.
 #pragma once

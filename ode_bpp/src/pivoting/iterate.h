@@ -48,8 +48,9 @@ void refresh_free_residual(const BoxedLcp& lcp, const std::vector<double>& x, co
                            Iterate& it);
 
 /// y_i = (A_FT x_T)_i on the free rows (tight[i] == 0; on a tight row, the same sum over the
-/// other tight columns: A x_T without the diagonal), Eq. 6's right-hand side without b: a pass over the rows of the tight columns with x_j != 0 only (A symmetric),
-/// O(n + their entries) instead of O(nnz). Each y_i adds its terms in the order row i of A lists
+/// other tight columns: A x_T without the diagonal), Eq. 6's right-hand side without b: a pass
+/// over the rows of the tight columns with x_j != 0 only (A symmetric), O(n + their entries)
+/// instead of O(nnz). Each y_i adds its terms in the order row i of A lists
 /// them when every row lists its columns by increasing built_row (symmetric_rows.h; assign from a
 /// dense A with the identity, both assign_lower and permute_into of such a matrix keep this), so
 /// that y_i is bit for bit lcp.A->multiply's at x with x_F = 0: the terms skipped are exact zeros.

@@ -114,18 +114,30 @@ TEST(PivotingFreeRowsFactor, SolvesEq6AfterRowsJoinAndLeave) {
     }
 }
 
+/// n rows, the odd ones tight at their upper bound and held at 0.5, the even ones free at 0.
+struct OddRowsTight {
+    std::vector<RowState> states;
+    std::vector<char> tight;
+    std::vector<double> x;
+    explicit OddRowsTight(int n)
+        : states(static_cast<std::size_t>(n), RowState::Free), tight(static_cast<std::size_t>(n), 0),
+          x(static_cast<std::size_t>(n), 0.0) {
+        for (int i = 1; i < n; i += 2) {
+            states[i] = RowState::AtHi;
+            tight[i] = 1;
+            x[i] = 0.5;
+        }
+    }
+};
+
 TEST(PivotingFreeRowsFactor, RefactorsInIncreasingIndexOnceRowsJoiningOutOfOrderWidenIt) {
     std::mt19937 rng(22);
     const int n = 80;
     const Fixture f(n, 3, 0.0, rng);
-    std::vector<RowState> states(static_cast<std::size_t>(n), RowState::Free);
-    std::vector<char> tight(static_cast<std::size_t>(n), 0);
-    std::vector<double> x(static_cast<std::size_t>(n), 0.0);
-    for (int i = 1; i < n; i += 2) {
-        states[i] = RowState::AtHi;
-        tight[i] = 1;
-        x[i] = 0.5;
-    }
+    OddRowsTight start(n);
+    const std::vector<RowState>& states = start.states;
+    std::vector<char>& tight = start.tight;
+    std::vector<double>& x = start.x;
     FreeRowsFactor factor;
     ASSERT_TRUE(factor.reset(f.lcp, states, x));
     // the odd rows join last to first: each spans from its first neighbour in F to the end
@@ -150,14 +162,9 @@ TEST(PivotingFreeRowsFactor, CountsItsUpdatesSinceItWasBuilt) {
     std::mt19937 rng(24);
     const int n = 80;
     const Fixture f(n, 3, 0.0, rng);
-    std::vector<RowState> states(static_cast<std::size_t>(n), RowState::Free);
-    std::vector<double> x(static_cast<std::size_t>(n), 0.0);
-    for (int i = 1; i < n; i += 2) {
-        states[i] = RowState::AtHi;
-        x[i] = 0.5;
-    }
+    const OddRowsTight start(n);
     FreeRowsFactor factor;
-    ASSERT_TRUE(factor.reset(f.lcp, states, x));
+    ASSERT_TRUE(factor.reset(f.lcp, start.states, start.x));
     EXPECT_EQ(factor.updates(), 0);
     factor.remove(0, 0.25);
     EXPECT_EQ(factor.updates(), 1);

@@ -1,6 +1,7 @@
 // Eq. 6's right-hand side from the tight columns only (pivoting/iterate.h): the pivoting loop's
 // decisions must not change with it, so it must equal the full product bit for bit on the free
-// rows, for A in its built order and in a solver's order (permuted, or assembled in that order).
+// rows, for A in its built order and in a solver's order (permuted, or assembled in that order);
+// off_diagonal_product, the same over every non-zero column, gives the same vector.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -45,6 +46,12 @@ void expect_full_product_on_free_rows(const SymmetricRows& A, unsigned seed) {
             if (tight[i]) continue;
             EXPECT_TRUE(same_bits(full[i], y[i])) << "row " << i << ": " << full[i] << " vs " << y[i];
         }
+        // off_diagonal_product is the same product over every non-zero column (x is 0 on F):
+        // the same vector on every row, to the bit
+        std::vector<double> off;
+        off_diagonal_product(A, x, scratch, off);
+        for (int i = 0; i < A.n(); ++i)
+            EXPECT_TRUE(same_bits(off[i], y[i])) << "row " << i << ": " << off[i] << " vs " << y[i];
     }
 }
 

@@ -67,13 +67,10 @@ void FreeRowsFactor::take_tight_values(const std::vector<RowState>& states, cons
         if (states[i] != RowState::Free) tight_x_[i] = x[i];
 }
 
-/// Over the columns of the rows held at a non-zero value only (A symmetric: iterate.h's
-/// tight_columns_product), O(n + their entries) instead of a product with A.
+/// Over the columns of the rows held at a non-zero value only (tight_x_ is 0 on F; iterate.h's
+/// off_diagonal_product), O(n + their entries) instead of a product with A.
 void FreeRowsFactor::compute_tight_product() {
-    const int n = lcp_->n();
-    tight_flags_.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) tight_flags_[i] = tight_x_[i] != 0;
-    tight_columns_product(*lcp_->A, tight_flags_, tight_x_, tight_columns_, tight_product_);
+    off_diagonal_product(*lcp_->A, tight_x_, tight_columns_, tight_product_);
 }
 
 /// Row i of L_FF is L(i, j) over the free columns j from its first non-zero on (found by walking

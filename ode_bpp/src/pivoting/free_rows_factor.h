@@ -79,7 +79,6 @@ private:
     std::vector<int> position_;           ///< position of row i in members_, -1 for a tight row
     std::vector<double> tight_x_;         ///< x_T, 0 on F
     std::vector<double> tight_product_;   ///< A x_T without the diagonal: on F, A_FT x_T
-    std::vector<char> tight_flags_;       ///< compute_tight_product's: x_T's non-zero rows
     std::vector<int> tight_columns_;      ///< compute_tight_product's scratch
     std::vector<double> column_;
     std::vector<int> refresh_rows_;

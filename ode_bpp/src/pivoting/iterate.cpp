@@ -60,12 +60,17 @@ void refresh_free_residual(const BoxedLcp& lcp, const std::vector<double>& x, co
     it.complete = false;
 }
 
-void tight_columns_product(const linalg::SymmetricRows& A, const std::vector<char>& tight, const std::vector<double>& x,
-                           std::vector<int>& columns, std::vector<double>& y) {
+namespace {
+
+/// y = A x without the diagonal over the columns j with take(j) and x_j != 0, in built-row order
+/// (tight_columns_product's summation order, iterate.h).
+template <typename Take>
+void columns_product(const linalg::SymmetricRows& A, const std::vector<double>& x, Take take, std::vector<int>& columns,
+                     std::vector<double>& y) {
     const int n = A.n();
     columns.clear();
     for (int j = 0; j < n; ++j)
-        if (tight[j] && x[j] != 0) columns.push_back(j);
+        if (take(j) && x[j] != 0) columns.push_back(j);
     if (!A.order().empty())  // rows list their columns by built row, not by stored index
         std::sort(columns.begin(), columns.end(), [&A](int a, int b) { return A.built_row(a) < A.built_row(b); });
     y.assign(static_cast<std::size_t>(n), 0.0);
@@ -73,6 +78,19 @@ void tight_columns_product(const linalg::SymmetricRows& A, const std::vector<cha
         const double xj = x[j];
         for (int k = A.row_begin(j); k < A.row_end(j); ++k) y[A.col(k)] += A.val(k) * xj;
     }
+}
+
+}  // namespace
+
+void tight_columns_product(const linalg::SymmetricRows& A, const std::vector<char>& tight, const std::vector<double>& x,
+                           std::vector<int>& columns, std::vector<double>& y) {
+    const char* t = tight.data();
+    columns_product(A, x, [t](int j) { return t[j] != 0; }, columns, y);
+}
+
+void off_diagonal_product(const linalg::SymmetricRows& A, const std::vector<double>& x, std::vector<int>& columns,
+                          std::vector<double>& y) {
+    columns_product(A, x, [](int) { return true; }, columns, y);
 }
 
 double free_residual(const Iterate& it, const std::vector<char>& tight) {

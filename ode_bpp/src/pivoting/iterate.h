@@ -58,6 +58,12 @@ void refresh_free_residual(const BoxedLcp& lcp, const std::vector<double>& x, co
 void tight_columns_product(const linalg::SymmetricRows& A, const std::vector<char>& tight, const std::vector<double>& x,
                            std::vector<int>& columns, std::vector<double>& y);
 
+/// y = (A - diag(A)) x, over x's non-zero columns only, summed as tight_columns_product sums (it
+/// is that product with every column tight): O(n + their entries). For an x that is zero on
+/// most rows (FreeRowsFactor's x_T). x: n entries; columns: scratch.
+void off_diagonal_product(const linalg::SymmetricRows& A, const std::vector<double>& x, std::vector<int>& columns,
+                          std::vector<double>& y);
+
 /// max over free rows (tight[i] == 0) of |w_i| / scale_i: Eq. 6's backward error, row by row.
 double free_residual(const Iterate& it, const std::vector<char>& tight);
 

@@ -31,6 +31,11 @@
 // of a solve (validation, residuals), so it is an upper bound of one Cholesky of A_FF plus one
 // solve. Beside it, --limit also writes the *physical* limit (physical_limit.h): that one
 // factorization of the final A_FF in envelope storage and one solve, timed alone.
+//
+// --factor-error writes Table 4's ‖L_deleted − chol(A_FF)‖_F for every factoring method and, for
+// bpp, the precision floor it is read against (factor_precision.h): how far a fresh factor of the
+// same A_FF (fresh_factor_error) and the downdated one (deleted_factor_error), in bpp's order,
+// each are from the exact factor.
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -48,6 +53,7 @@
 #include "ode_bpp/io.h"
 #include "ode_bpp/residuals.h"
 #include "ode_bpp/solver.h"
+#include "factor_precision.h"
 #include "peer_registry.h"
 #include "physical_limit.h"
 
@@ -256,6 +262,9 @@ struct Measurement {
     double nonfriction_residual = std::numeric_limits<double>::quiet_NaN();
     std::vector<double> times_us;
     double factor_error = std::numeric_limits<double>::quiet_NaN();
+    /// bpp only: how far a fresh and the downdated factor of A_FF (its final index set and order)
+    /// each are from the exact one, the floor factor_error is read against (factor_precision.h)
+    ode_bpp::bench::FactorPrecision precision;
     double limit_us = std::numeric_limits<double>::quiet_NaN();
     std::string limit_status;
     double physical_limit_us = std::numeric_limits<double>::quiet_NaN();
@@ -355,6 +364,8 @@ std::vector<Measurement> measure_file(const ode_bpp::MlcpFile& file, const std::
             options.compute_factor_error = true;
             ode_bpp::Result with_error = ode_bpp::solve(problem, options, out[v].x.data());
             out[v].factor_error = with_error.factor_error;
+            if (variants[v].name == "bpp" && with_error.tight > 0)
+                out[v].precision = ode_bpp::bench::factor_precision(file, with_error.ordering, with_error.states);
         }
         if (cli.limit && variants[v].name == "bpp") measure_limit(file, cli.repeat, out[v]);
     }
@@ -364,7 +375,8 @@ std::vector<Measurement> measure_file(const ode_bpp::MlcpFile& file, const std::
 const char* kHeader =
     "group,scene,frame,island,file,n,nub,cond,method,iterations,status,time_us,pivots,murty_pivots,"
     "tight,natural_residual,relative_natural_residual,scaled_natural_residual,friction_error,"
-    "factor_error,fallback,limit_us,limit_status,nonfriction_residual,physical_limit_us,friction_rows\n";
+    "factor_error,fallback,limit_us,limit_status,nonfriction_residual,physical_limit_us,friction_rows,"
+    "fresh_factor_error,deleted_factor_error\n";
 
 /// Rows with a friction coupling (findex >= 0): Frozen friction solves such an island twice
 /// (frictionless first), so its fewest pivot steps are 2, else 1.
@@ -384,7 +396,8 @@ void write_row(std::ostream& csv, const ode_bpp::MlcpFile& file, const std::stri
         << r.residuals.scaled_natural << ',' << r.residuals.friction << ',' << m.factor_error << ','
         << (r.fallback == ode_bpp::Fallback::None ? "-" : ode_bpp::to_string(r.fallback)) << ',' << m.limit_us << ','
         << (m.limit_status.empty() ? "-" : m.limit_status) << ',' << m.nonfriction_residual << ','
-        << m.physical_limit_us << ',' << friction_rows(file) << '\n';
+        << m.physical_limit_us << ',' << friction_rows(file) << ',' << m.precision.fresh << ',' << m.precision.deleted
+        << '\n';
 }
 
 void warm_up(const std::vector<std::string>& files, const std::vector<Variant>& variants, int count) {

@@ -1,5 +1,6 @@
 #include "linalg/skyline_cholesky.h"
 #include "linalg/kernel_clones.h"
+#include "linalg/short_update.h"
 
 #include <algorithm>
 #include <cassert>
@@ -55,9 +56,10 @@ void embed_removed(SkylineMatrix& L, int k0, int k1, const std::vector<char>& re
 /// L0: the factorization was a fifth of the whole world step).
 constexpr int kShortColumn = 8;
 
-/// target[0 .. length) -= l * source[0 .. length).
-void subtract_scaled(double* target, const double* source, double l, int length) {
-    for (int r = 0; r < length; ++r) target[r] -= l * source[r];
+/// target[0 .. length) -= l * source[0 .. length), length < kShortColumn (short_update.h).
+[[gnu::always_inline]] inline void subtract_scaled(double* target, const double* source, double l, int length) {
+    static_assert(kShortColumn <= kShortRun, "short columns are short runs");
+    subtract_multiple_short(target, source, l, length);
 }
 
 /// Up to kGroup earlier columns updating column k at once: column k's entries are loaded and
@@ -249,9 +251,10 @@ bool pivot_is_positive(double pivot, double diagonal, int earlier_columns) {
 }
 
 /// Column k's square root and scaling, once its updates are done; false when its pivot fails.
-/// A plain loop: most columns of a sparse island hold a few entries, where an Eigen map's
-/// alignment set-up cost more than the products (callgrind, the crane: 94 instructions per
-/// column, a quarter of its factorization); each entry is multiplied by the same 1 / L(k,k).
+/// No Eigen map: most columns of a sparse island hold a few entries, where its alignment set-up
+/// cost more than the products (callgrind, the crane: 94 instructions per column, a quarter of
+/// its factorization), and those columns take straight-line code (short_update.h); each entry is
+/// multiplied by the same 1 / L(k,k).
 bool finish_column(SkylineMatrix& L, int k, double diagonal, int earlier_columns) {
     double* column = L.column(k);
     if (!pivot_is_positive(column[0], diagonal, earlier_columns)) return false;
@@ -259,7 +262,11 @@ bool finish_column(SkylineMatrix& L, int k, double diagonal, int earlier_columns
     column[0] = l_kk;
     const double inverse = 1.0 / l_kk;
     const int height = L.shape().height(k);
-    for (int r = 1; r < height; ++r) column[r] *= inverse;
+    if (height > kShortRun) {
+        for (int r = 1; r < height; ++r) column[r] *= inverse;
+        return true;
+    }
+    scale_short(column + 1, inverse, height - 1);  // straight-line code on short columns
     return true;
 }
 

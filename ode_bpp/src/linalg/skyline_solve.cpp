@@ -1,5 +1,6 @@
 #include "linalg/skyline_solve.h"
 #include "linalg/kernel_clones.h"
+#include "linalg/short_update.h"
 
 #include <Eigen/Core>
 
@@ -32,6 +33,10 @@ template <bool kLeading>
         const int below = rows_below<kLeading>(L, k, k1);
         if (y_k == 0.0) continue;
         double* rhs = x + k + 1;
+        if (below <= kShortRun) {
+            subtract_multiple_short(rhs, column + 1, y_k, below);  // short_update.h
+            continue;
+        }
         for (int r = 0; r < below; ++r) rhs[r] -= y_k * column[1 + r];
     }
 }

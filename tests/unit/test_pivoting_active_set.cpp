@@ -303,16 +303,26 @@ struct ActiveSetRun {
     PivotStats counters;
 };
 
-ActiveSetRun run_active_set(const pivoting::BoxedLcp& lcp, std::vector<double> start, int max_steps,
-                            int release_at_most = Tuning{}.active_set_release_at_most) {
+/// The buffers a fixed-bound solve keeps for the stage from one run to the next.
+struct KeptActiveSetBuffers {
+    pivoting::ActiveSetWorkspace workspace;
+    pivoting::FreeRowsFactor factor;
+};
+
+ActiveSetRun run_active_set_in(KeptActiveSetBuffers& kept, const pivoting::BoxedLcp& lcp, std::vector<double> start,
+                               int max_steps, int release_at_most = Tuning{}.active_set_release_at_most) {
     pivoting::PivotSettings settings;
     settings.max_pivots = max_steps;
     settings.release_at_most = release_at_most;
-    pivoting::ActiveSetWorkspace workspace;
-    pivoting::FreeRowsFactor factor;
     ActiveSetRun run{LoopOutcome::Breakdown, std::vector<RowState>(start.size(), RowState::Free), std::move(start), {}};
-    run.outcome = pivoting::active_set(lcp, settings, run.states, run.x, run.counters, workspace, factor);
+    run.outcome = pivoting::active_set(lcp, settings, run.states, run.x, run.counters, kept.workspace, kept.factor);
     return run;
+}
+
+ActiveSetRun run_active_set(const pivoting::BoxedLcp& lcp, std::vector<double> start, int max_steps,
+                            int release_at_most = Tuning{}.active_set_release_at_most) {
+    KeptActiveSetBuffers fresh;
+    return run_active_set_in(fresh, lcp, std::move(start), max_steps, release_at_most);
 }
 
 /// The largest violation of the boxed LCP's conditions at x, relative to (|A||x| + |b|)_i:
@@ -386,6 +396,33 @@ TEST(PivotingActiveSet, ReleasesAtMostItsCapOfRowsAtOnce) {
         EXPECT_LE(kkt_violation(d.lcp, r.x), 10 * Options{}.tolerance) << "cap " << cap;
         EXPECT_LT(problems::max_abs_diff(r.x, all.x), 1e-9 * (1 + problems::inf_norm(all.x))) << "cap " << cap;
     }
+}
+
+// A run whose budget ends right after it freed several rows leaves nothing behind in the kept
+// buffers: the next run, on its own start, does what it does with fresh buffers (fuzz_solve
+// found the next run's first step retightening those rows out of a factor that never held them).
+TEST(PivotingActiveSet, KeptBuffersCarryNothingFromOneRunToTheNext) {
+    const auto p = problems::random_boxed_mlcp(40, 4, 8, 1e2, 3);
+    const DriverLcp d(p);
+    const std::vector<double> wrong(static_cast<std::size_t>(p.n), 1e3), zero(static_cast<std::size_t>(p.n), 0.0);
+    const ActiveSetRun alone = run_active_set(d.lcp, zero, 20 * p.n);
+    ASSERT_EQ(alone.outcome, LoopOutcome::Converged);
+    const ActiveSetRun full = run_active_set(d.lcp, wrong, 20 * p.n, 0);
+    ASSERT_EQ(full.outcome, LoopOutcome::Converged);
+    int cut_after_release = 0;
+    for (int budget = 1; budget < full.counters.pivots; ++budget) {
+        KeptActiveSetBuffers kept;
+        const ActiveSetRun cut = run_active_set_in(kept, d.lcp, wrong, budget, 0);
+        ASSERT_EQ(cut.outcome, LoopOutcome::MaxIterations) << "budget " << budget;
+        cut_after_release += budget < static_cast<int>(full.counters.tight_per_step.size()) &&
+                             full.counters.tight_per_step[budget] + 1 < full.counters.tight_per_step[budget - 1];
+        const ActiveSetRun next = run_active_set_in(kept, d.lcp, zero, 20 * p.n);
+        EXPECT_EQ(next.outcome, alone.outcome) << "budget " << budget;
+        EXPECT_EQ(next.states, alone.states) << "budget " << budget;
+        EXPECT_EQ(next.x, alone.x) << "budget " << budget;
+        EXPECT_EQ(next.counters.pivots, alone.counters.pivots) << "budget " << budget;
+    }
+    EXPECT_GT(cut_after_release, 0) << "no budget ended right after a release of several rows";
 }
 
 // A fixed-bound solve keeps the active set's factor storage for the stage's next run up to

@@ -81,7 +81,7 @@ void move_rows_checking_eq6(FreeRowsFactor& factor, const Fixture& f, std::vecto
     for (int move = 0; move < moves; ++move) {
         const int i = static_cast<int>(rng() % n);
         if (tight[i]) {
-            ASSERT_TRUE(factor.add(i));
+            ASSERT_EQ(factor.add(i), FreeRowsFactor::AddOutcome::Added);
             tight[i] = 0;
         } else {
             x[i] = u(rng);
@@ -143,7 +143,7 @@ TEST(PivotingFreeRowsFactor, RefactorsInIncreasingIndexOnceRowsJoiningOutOfOrder
     // the odd rows join last to first: each spans from its first neighbour in F to the end
     bool reordered = false;
     for (int i = n - 1; i > 0; i -= 2) {
-        ASSERT_TRUE(factor.add(i));
+        ASSERT_EQ(factor.add(i), FreeRowsFactor::AddOutcome::Added);
         tight[i] = 0;
         const std::vector<int>& F = factor.members();
         if (F.back() != i) {
@@ -168,14 +168,14 @@ TEST(PivotingFreeRowsFactor, CountsItsUpdatesSinceItWasBuilt) {
     EXPECT_EQ(factor.updates(), 0);
     factor.remove(0, 0.25);
     EXPECT_EQ(factor.updates(), 1);
-    ASSERT_TRUE(factor.add(n - 1));
+    ASSERT_EQ(factor.add(n - 1), FreeRowsFactor::AddOutcome::Added);
     EXPECT_EQ(factor.updates(), 2);
     ASSERT_TRUE(factor.refresh());
     EXPECT_EQ(factor.updates(), 0);
     bool reordered = false;  // rows joining last to first widen the envelope until F is refactored
     for (int i = n - 3; i > 0 && !reordered; i -= 2) {
         const int before = factor.updates();
-        ASSERT_TRUE(factor.add(i));
+        ASSERT_EQ(factor.add(i), FreeRowsFactor::AddOutcome::Added);
         reordered = factor.members().back() != i;
         EXPECT_EQ(factor.updates(), reordered ? 0 : before + 1);
     }

@@ -40,6 +40,9 @@ public:
     LoopOutcome run(std::vector<RowState>& states, std::vector<double>& x, const EnvelopeFactor& seed) {
         ws_.entry_states = states;
         ws_.entry_x = x;
+        // a run that spent its budget right after a release leaves those rows in the kept
+        // buffers; they are not this run's, and its factor does not hold them (fuzz_solve)
+        ws_.released.clear();
         project(states, x);
         if (!factor_.reset(lcp_, states, x, seed)) return give_up(states, x, LoopOutcome::Breakdown);
         int polish_rounds = tuning::kPolishRounds;
@@ -134,13 +137,16 @@ private:
     /// Frees the tight rows whose multipliers have the wrong sign (ws_.inf at a face's minimizer),
     /// the most violated first, so that it is ws_.released[0], then the next most violated up to
     /// settings.release_at_most in all; a row that would break the factor down stays tight. False
-    /// when the most violated one does (nothing freed then).
+    /// when the most violated one does (nothing freed then), or when the refactorization that an
+    /// addition's growth called for broke down (the factor then holds part of F only).
     bool release(std::vector<RowState>& states) {
         ws_.released.clear();
         choose_releases();
         for (std::size_t k = 0; k < ws_.to_release.size(); ++k) {
             const int i = ws_.inf.rows[ws_.to_release[k]];  // a tight row: free rows are feasible
-            if (!factor_.add(i)) {
+            const FreeRowsFactor::AddOutcome added = factor_.add(i);
+            if (added == FreeRowsFactor::AddOutcome::Broken) return false;
+            if (added == FreeRowsFactor::AddOutcome::Rejected) {
                 if (k == 0) return false;
                 continue;
             }

@@ -127,12 +127,13 @@ bool FreeRowsFactor::refresh() {
     return true;
 }
 
-bool FreeRowsFactor::add(int i) {
-    if (!append_row(i)) return false;
+FreeRowsFactor::AddOutcome FreeRowsFactor::add(int i) {
+    if (!append_row(i)) return AddOutcome::Rejected;
     ++updates_;
     const std::size_t rows = static_cast<std::size_t>(lcp_->n());
-    if (factor_.stored_entries() > kReorderGrowth * std::max(refreshed_entries_, rows)) return refresh();
-    return true;
+    if (factor_.stored_entries() > kReorderGrowth * std::max(refreshed_entries_, rows) && !refresh())
+        return AddOutcome::Broken;
+    return AddOutcome::Added;
 }
 
 bool FreeRowsFactor::append_row(int i) {

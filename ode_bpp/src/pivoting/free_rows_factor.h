@@ -36,8 +36,17 @@ public:
     bool reset(const BoxedLcp& lcp, const std::vector<RowState>& states, const std::vector<double>& x,
                const EnvelopeFactor& seed);
 
-    /// Tight row i joins F as the factor's last row; false, F unchanged, on breakdown.
-    bool add(int i);
+    /// What add() did.
+    enum class AddOutcome {
+        Added,     ///< i is in F
+        Rejected,  ///< i would break the factor down: F unchanged
+        /// i joined, and the refactorization its growth called for (refresh) broke down: the
+        /// factor holds part of F only, and nothing but reset() may use it again
+        Broken,
+    };
+    /// Tight row i joins F as the factor's last row; refactors F afresh where the updates have
+    /// grown the factor beyond kReorderGrowth times its entries when last built.
+    AddOutcome add(int i);
     /// Free row i leaves F, held at `value` from now on.
     void remove(int i, double value);
     /// F in the factor's order.

@@ -10,7 +10,9 @@
 #include "linalg/skyline.h"
 #include "ordering/order_rows.h"
 #include "ordering/ordering_choice.h"
+#include "ode_bpp/io.h"
 #include "problems/generators.h"
+#include "test_io_support.h"
 
 namespace ode_bpp::ordering {
 namespace {
@@ -165,6 +167,101 @@ TEST(PivotingOrdering, ASmallIslandMovesItsFrictionRowsLastWhereThatPricesLower)
     }
     EXPECT_EQ(moved_taken, 2);
     EXPECT_EQ(caller_kept, 2);
+}
+
+/// p with its row blocks in the order `blocks` (each block's rows kept together and in order):
+/// A, b, lo, hi and findex permuted alike, nub 0 (the unbounded rows need not lead any more).
+problems::OwnedProblem with_blocks_in_order(const problems::OwnedProblem& p, const std::vector<int>& blocks) {
+    std::vector<int> perm;  // perm[new] = old
+    problems::OwnedProblem q = problems::OwnedProblem::zeros(p.name, p.n);
+    for (int k : blocks) {
+        q.block_row.push_back(static_cast<int>(perm.size()));
+        q.block_body.insert(q.block_body.end(), {p.block_body[2 * k], p.block_body[2 * k + 1]});
+        for (int i = p.block_row[k]; i < p.block_row[k + 1]; ++i) perm.push_back(i);
+    }
+    q.block_row.push_back(p.n);
+    std::vector<int> to_new(p.n);
+    for (int i = 0; i < p.n; ++i) to_new[perm[i]] = i;
+    q.findex.assign(p.n, -1);
+    for (int i = 0; i < p.n; ++i) {
+        for (int j = 0; j < p.n; ++j) q.a(i, j) = p.a(perm[i], perm[j]);
+        q.b[i] = p.b[perm[i]];
+        q.lo[i] = p.lo[perm[i]];
+        q.hi[i] = p.hi[perm[i]];
+        if (p.findex[perm[i]] >= 0) q.findex[i] = to_new[p.findex[perm[i]]];
+    }
+    return q;
+}
+
+/// The caller's order with the friction rows last (Frozen friction's first solve holds them at
+/// 0), and that order with their normals moved last just before them.
+struct MovedOrders {
+    std::vector<int> friction_last, normals_then_friction;
+    std::vector<char> friction;
+};
+MovedOrders moved_orders(int n, const std::vector<int>& findex) {
+    MovedOrders m;
+    std::vector<char> normals(n, 0);
+    m.friction.assign(n, 0);
+    for (int i = 0; i < n; ++i)
+        if (findex[i] >= 0) m.friction[i] = normals[findex[i]] = 1;
+    m.friction_last.resize(n);
+    std::iota(m.friction_last.begin(), m.friction_last.end(), 0);
+    m.normals_then_friction = m.friction_last;
+    move_flagged_last(m.friction_last, m.friction);
+    move_flagged_last(m.normals_then_friction, normals);
+    move_flagged_last(m.normals_then_friction, m.friction);
+    return m;
+}
+
+/// ODE lists an island's joints as it walks its bodies, so a contact's rows may sit between two
+/// joints. On parkour's islands the hull's joints make most of A one dense block, and a normal
+/// left among the joints keeps its wheel's columns reaching to the friction rows at the end: the
+/// island, too dense to be numbered, moves its normals last too, just before the friction rows,
+/// which stay the tail Frozen friction's first solve leaves out (docs/tuning.md).
+TEST(PivotingOrdering, AHullsIslandMovesTheNormalsOfItsFrictionRowsBeforeThem) {
+    const ReadResult read =
+        read_mlcp((io_test::data_dir() / "captured" / "parkour-hull-normals-last-185.mlcp").string());
+    ASSERT_TRUE(read.ok) << read.error;
+    const Problem p = read.file.view();
+    const linalg::SymmetricRows A(p, {});
+    ASSERT_TRUE(ordering_cannot_pay(A));
+    const MovedOrders m = moved_orders(read.file.n, read.file.findex);
+    ASSERT_NE(m.normals_then_friction, m.friction_last);
+    const std::vector<char> none(p.n, 0);
+    EXPECT_LT(warm_solve_price(A, m.normals_then_friction, none, m.friction),
+              warm_solve_price(A, m.friction_last, none, m.friction));
+    EXPECT_EQ(choose_ordering(Method::Bpp, p, A, {}, FirstSolve::FrictionRowsTight), m.normals_then_friction);
+}
+
+/// On a chain whose contacts sit between its joints, the normals' rows moved last would reach
+/// back along the band: the choice keeps whichever of the caller's orders prices lowest.
+TEST(PivotingOrdering, AChainsIslandKeepsItsNormalsWhereMovingThemPricesHigher) {
+    const auto chain = problems::chain_mlcp(4, 12);
+    // chain_mlcp's blocks: joint j on bodies j and j + 1, then one block per contact; here each
+    // contact follows the last joint on its body
+    const int joints = 3, num_blocks = static_cast<int>(chain.block_row.size()) - 1;
+    std::vector<int> blocks;
+    for (int j = 0; j < joints; ++j) {
+        blocks.push_back(j);
+        for (int c = joints; c < num_blocks; ++c)
+            if (std::min(chain.block_body[2 * c], joints - 1) == j) blocks.push_back(c);
+    }
+    ASSERT_EQ(static_cast<int>(blocks.size()), num_blocks);
+    const auto owned = with_blocks_in_order(chain, blocks);
+    const Problem p = owned.view();
+    const linalg::SymmetricRows A(p, {});
+    ASSERT_TRUE(ordering_cannot_pay(A));
+    const MovedOrders m = moved_orders(owned.n, owned.findex);
+    ASSERT_NE(m.normals_then_friction, m.friction_last);
+    const std::vector<char> none(p.n, 0);
+    const std::vector<int> chosen = choose_ordering(Method::Bpp, p, A, {}, FirstSolve::FrictionRowsTight);
+    EXPECT_NE(chosen, m.normals_then_friction);
+    std::vector<int> caller(p.n);
+    std::iota(caller.begin(), caller.end(), 0);
+    for (const std::vector<int>* candidate :
+         std::initializer_list<const std::vector<int>*>{&caller, &m.friction_last, &m.normals_then_friction})
+        EXPECT_LE(warm_solve_price(A, chosen, none, m.friction), warm_solve_price(A, *candidate, none, m.friction));
 }
 
 /// Without pricing (Tuning::price_tight_last_orderings off: the hook's first look at a new

@@ -94,10 +94,26 @@ bool priced_out_by_moved_rows(const linalg::SymmetricRows& A, const std::vector<
     return kRefactorUnit * flagged_rows_factor_bound(A, perm, moved, price / kRefactorUnit) >= price;
 }
 
-/// The caller's own order, or that order with the first solve's tight rows moved last where
-/// that prices lower (warm_solve_price): numbering no graph, it costs O(entries of A) to price.
+/// The normal rows of p's friction rows flagged in `rows` (findex targets), or empty when none is.
+std::vector<char> normals_of(const Problem& p, const std::vector<char>& rows) {
+    std::vector<char> normals(static_cast<std::size_t>(p.n), 0);
+    bool any = false;
+    for (int i = 0; i < p.n; ++i)
+        if (rows[i] && p.findex[i] >= 0 && !rows[p.findex[i]]) {
+            normals[p.findex[i]] = 1;
+            any = true;
+        }
+    return any ? normals : std::vector<char>{};
+}
+
+/// The caller's own order, that order with the first solve's tight rows moved last, or with the
+/// normals of its friction rows moved last just before them, whichever prices lowest
+/// (warm_solve_price): numbering no graph, it costs O(entries of A) per candidate.
 /// ODE lists a contact's friction rows beside its normal; Frozen friction's first solve holds them
 /// at 0 and its second frees them, so with them last one factor of the leading rows serves both.
+/// A normal left among the joints keeps its body's columns reaching from there to the friction
+/// rows at the end: where the joints are one dense block (parkour's hull), moving the normals
+/// too saves more than their longer rows cost, on a chain not (docs/tuning.md).
 std::vector<int> caller_order(const Problem& problem, const linalg::SymmetricRows& A,
                               const std::vector<RowState>& warm_start, FirstSolve first) {
     std::vector<int> best = identity(problem.n);
@@ -107,11 +123,25 @@ std::vector<int> caller_order(const Problem& problem, const linalg::SymmetricRow
     std::vector<int> moved = best;
     ordering::move_flagged_last(moved, first_tight);
     if (moved == best) return best;
-    const double own_price = price_in_shape(linalg::SkylineShape::from_row_profile(A.row_profile()), best, tight, first_tight);
-    // where the moved rows alone make its factor dearer (a box stack's contacts: 100 times), a
-    // few of them say so without pricing the whole shape
-    if (priced_out_by_moved_rows(A, moved, first_tight, own_price)) return best;
-    return warm_solve_price(A, moved, tight, first_tight) < own_price ? moved : best;
+    double best_price = price_in_shape(linalg::SkylineShape::from_row_profile(A.row_profile()), best, tight, first_tight);
+    const auto consider = [&](const std::vector<int>& candidate) {
+        // where the moved rows alone make its factor dearer (a box stack's contacts: 100 times), a
+        // few of them say so without pricing the whole shape
+        if (priced_out_by_moved_rows(A, candidate, first_tight, best_price)) return;
+        const double price = warm_solve_price(A, candidate, tight, first_tight);
+        if (price < best_price) {
+            best_price = price;
+            best = candidate;
+        }
+    };
+    consider(moved);
+    const std::vector<char> normals = normals_of(problem, first_tight);
+    if (normals.empty()) return best;
+    std::vector<int> with_normals = identity(problem.n);
+    ordering::move_flagged_last(with_normals, normals);
+    ordering::move_flagged_last(with_normals, first_tight);
+    if (with_normals != moved) consider(with_normals);  // ODE's contacts after all its joints: the same order
+    return best;
 }
 
 }  // namespace

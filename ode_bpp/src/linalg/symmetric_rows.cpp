@@ -297,4 +297,16 @@ std::vector<int> SymmetricRows::row_profile_under(const std::vector<int>& perm) 
     return first;
 }
 
+std::vector<int> SymmetricRows::row_profile_ranked(const std::vector<int>& perm, const std::vector<unsigned char>& rank,
+                                                   const std::vector<int>& first) const {
+    const std::vector<int> to_new = inverse_permutation(perm);
+    std::vector<int> moved_first(static_cast<std::size_t>(n_));
+    for (int i = 0; i < n_; ++i) {
+        const int row = perm[i];
+        const int f = first[row];
+        moved_first[i] = rank[row] == 0 && rank[f] == 0 ? to_new[f] : first_under(row, to_new);
+    }
+    return moved_first;
+}
+
 }  // namespace ode_bpp::linalg

@@ -121,6 +121,14 @@ public:
     void row_profile(std::vector<int>& first) const;
     /// Row profile of this matrix permuted by perm (perm[new] = old), without building it.
     std::vector<int> row_profile_under(const std::vector<int>& perm) const;
+    /// The same for a perm that lists the rows by (rank[row], row): those of rank 0 in stored
+    /// order, then those of rank 1, and so on (rows moved last, each group keeping its order).
+    /// first: this matrix's own row_profile(). A row of rank 0 whose first stored neighbour has
+    /// rank 0 too starts at that neighbour (the renumbering keeps the order of rank 0 and puts
+    /// every other row after it), so only the other rows are read: O(n + their entries).
+    /// rank: n entries, stored order.
+    std::vector<int> row_profile_ranked(const std::vector<int>& perm, const std::vector<unsigned char>& rank,
+                                        const std::vector<int>& first) const;
     /// Its entry for one row: the first column of stored row `row` (stored order) once the rows
     /// are renumbered by to_new (to_new[stored] = new), within row to_new[row]'s lower triangle.
     int first_under(int row, const std::vector<int>& to_new) const {

@@ -106,9 +106,18 @@ std::vector<char> normals_of(const Problem& p, const std::vector<char>& rows) {
     return any ? normals : std::vector<char>{};
 }
 
+/// The caller's order with the rows of rank 1, then those of rank 2, moved last, each group in
+/// its order: perm[new] = old.
+std::vector<int> ranked_order(const std::vector<unsigned char>& rank) {
+    std::vector<int> perm = identity(static_cast<int>(rank.size()));
+    std::stable_sort(perm.begin(), perm.end(), [&rank](int a, int b) { return rank[a] < rank[b]; });
+    return perm;
+}
+
 /// The caller's own order, that order with the first solve's tight rows moved last, or with the
 /// normals of its friction rows moved last just before them, whichever prices lowest
-/// (warm_solve_price): numbering no graph, it costs O(entries of A) per candidate.
+/// (warm_solve_price): numbering no graph, each candidate costs O(n + its moved rows' entries),
+/// its profile read off the caller's (SymmetricRows::row_profile_ranked).
 /// ODE lists a contact's friction rows beside its normal; Frozen friction's first solve holds them
 /// at 0 and its second frees them, so with them last one factor of the leading rows serves both.
 /// A normal left among the joints keeps its body's columns reaching from there to the friction
@@ -120,27 +129,30 @@ std::vector<int> caller_order(const Problem& problem, const linalg::SymmetricRow
     const std::vector<char> tight = warm_tight(warm_start);
     const std::vector<char> first_tight = first_solve_tight(problem, tight, first);
     if (first_tight.empty()) return best;
-    std::vector<int> moved = best;
-    ordering::move_flagged_last(moved, first_tight);
-    if (moved == best) return best;
-    double best_price = price_in_shape(linalg::SkylineShape::from_row_profile(A.row_profile()), best, tight, first_tight);
-    const auto consider = [&](const std::vector<int>& candidate) {
+    const std::vector<int> profile = A.row_profile();
+    double best_price = price_in_shape(linalg::SkylineShape::from_row_profile(profile), best, tight, first_tight);
+    std::vector<int> tried;  // the candidate priced last
+    const auto consider = [&](const std::vector<unsigned char>& rank) {
+        std::vector<int> candidate = ranked_order(rank);
+        if (candidate == best || candidate == tried) return;  // ODE's contacts after all joints: one order
+        tried = candidate;
         // where the moved rows alone make its factor dearer (a box stack's contacts: 100 times), a
         // few of them say so without pricing the whole shape
         if (priced_out_by_moved_rows(A, candidate, first_tight, best_price)) return;
-        const double price = warm_solve_price(A, candidate, tight, first_tight);
+        const linalg::SkylineShape shape =
+            linalg::SkylineShape::from_row_profile(A.row_profile_ranked(candidate, rank, profile));
+        const double price = price_in_shape(shape, candidate, tight, first_tight);
         if (price < best_price) {
             best_price = price;
-            best = candidate;
+            best = std::move(candidate);
         }
     };
-    consider(moved);
+    std::vector<unsigned char> rank(first_tight.begin(), first_tight.end());
+    consider(rank);
     const std::vector<char> normals = normals_of(problem, first_tight);
     if (normals.empty()) return best;
-    std::vector<int> with_normals = identity(problem.n);
-    ordering::move_flagged_last(with_normals, normals);
-    ordering::move_flagged_last(with_normals, first_tight);
-    if (with_normals != moved) consider(with_normals);  // ODE's contacts after all its joints: the same order
+    for (int i = 0; i < problem.n; ++i) rank[i] = first_tight[i] ? 2 : normals[i] ? 1 : 0;
+    consider(rank);
     return best;
 }
 

@@ -96,6 +96,7 @@ bool priced_out_by_moved_rows(const linalg::SymmetricRows& A, const std::vector<
 
 /// The normal rows of p's friction rows flagged in `rows` (findex targets), or empty when none is.
 std::vector<char> normals_of(const Problem& p, const std::vector<char>& rows) {
+    if (p.findex == nullptr) return {};
     std::vector<char> normals(static_cast<std::size_t>(p.n), 0);
     bool any = false;
     for (int i = 0; i < p.n; ++i)
